@@ -1,0 +1,34 @@
+#pragma once
+// FNV-1a over raw bytes: the state hash that proves determinism (same scene, seed and thread
+// count give the same bits).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace fluidbed {
+
+class Fnv1a {
+ public:
+  void bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) {
+      h_ ^= p[i];
+      h_ *= 1099511628211ULL;
+    }
+  }
+  template <class T>
+  void values(const std::vector<T>& v) {
+    bytes(v.data(), v.size() * sizeof(T));
+  }
+  template <class T>
+  void value(const T& v) {
+    bytes(&v, sizeof(T));
+  }
+  std::uint64_t digest() const { return h_; }
+
+ private:
+  std::uint64_t h_ = 14695981039346656037ULL;
+};
+
+}  // namespace fluidbed

@@ -1,0 +1,67 @@
+#pragma once
+// The linear spring-dashpot contact with Coulomb friction (Xu & Yu 1997, eqs 3-7) and the
+// paper's incremental displacements (eqs 13-17). Small stateless functions over a parameter
+// struct: the solver picks the variant once per run, the hot loop has no virtual call.
+//
+// Sign convention: n points from particle i to its partner j (or into the wall); t = z x n.
+// A displacement delta > 0 means compression (normal) or a shear of i's contact point along +t
+// relative to j; the force on i is along -n for compression and against the shear.
+#include <algorithm>
+#include <cmath>
+
+namespace fluidbed {
+
+struct ContactParams {
+  double kn = 50000.0;  // N/m, kappa_n
+  double kt = 50000.0;  // N/m, kappa_t
+  double eta_n = 0.15;  // kg/s
+  double eta_t = 0.15;  // kg/s
+  double mu = 0.3;      // gamma, Coulomb friction coefficient
+};
+
+// Force on i, as components along n and t, and whether the contact slides.
+struct ContactForce {
+  double fn = 0.0;  // N, along n (negative: pushes i away from j)
+  double ft = 0.0;  // N, along t
+  bool sliding = false;
+};
+
+// Eqs 3-7 for displacements dn, dt (updated in place when the contact slides: the tangential
+// spring is held at the Coulomb limit, so the contact sticks again as soon as the shear
+// reverses). vn = v_r . n, vt = v_r . t + spin terms (eq 15's bracket). The normal spring acts
+// in compression only; the dashpot acts over the whole contact, as in the damped oscillator.
+inline ContactForce contact_force(const ContactParams& p, double dn, double& dt, double vn,
+                                  double vt) {
+  ContactForce f;
+  const double fn_spring = -p.kn * std::max(dn, 0.0);   // eq 3
+  f.fn = fn_spring - p.eta_n * vn;                        // eq 6
+  const double ft_spring = -p.kt * dt;                     // eq 4
+  const double limit = p.mu * std::fabs(fn_spring);       // eq 5
+  if (std::fabs(ft_spring) > limit) {
+    f.sliding = true;
+    f.ft = ft_spring > 0.0 ? limit : -limit;  // friction alone while sliding
+    if (p.kt > 0.0) dt = -f.ft / p.kt;
+  } else {
+    f.ft = ft_spring - p.eta_t * vt;  // eq 7
+  }
+  return f;
+}
+
+// Eq 13: the time since two spheres first touched, found by moving j back from i along the
+// relative velocity until their centres are R apart. p = x_j - x_i, w = v_j - v_i, L = |p| < R.
+// Returns 0 when the spheres have no relative velocity (they were placed touching).
+inline double time_since_touch(double px, double py, double wx, double wy, double R, double L) {
+  const double ww = wx * wx + wy * wy;
+  if (ww <= 0.0) return 0.0;
+  const double pw = px * wx + py * wy;
+  const double disc = pw * pw + ww * (R * R - L * L);
+  return (pw + std::sqrt(std::max(disc, 0.0))) / ww;
+}
+
+// The same for a plane: the particle's centre is `gap` short of touching distance (overlap > 0)
+// and approaches the wall at speed vn.
+inline double time_since_touch_wall(double overlap, double vn) {
+  return vn > 0.0 ? overlap / vn : 0.0;
+}
+
+}  // namespace fluidbed

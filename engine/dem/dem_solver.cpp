@@ -1,0 +1,349 @@
+#include "dem/dem_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "core/hash.hpp"
+
+namespace fluidbed {
+
+Integrator parse_integrator(const std::string& name) {
+  if (name == "newmark") return Integrator::Newmark;
+  if (name == "velocity_verlet") return Integrator::VelocityVerlet;
+  if (name == "symplectic_euler") return Integrator::SymplecticEuler;
+  throw InputError("time.integrator: unknown integrator \"" + name + "\"");
+}
+
+DemSolver::DemSolver(const Settings& s, Particles particles)
+    : walls_(slab_walls(s.domain)),
+      integrator_(parse_integrator(s.time.integrator)),
+      incremental_(s.contact.displacement == "incremental"),
+      dt_(s.time.dt),
+      gravity_(s.physics.gravity),
+      width_(s.domain.width),
+      height_(s.domain.height),
+      overlap_limit_(s.diagnostics.overlap_limit) {
+  params_.kn = s.contact.stiffness;
+  params_.kt = s.contact.stiffness * s.contact.tangential_stiffness_ratio;
+  params_.eta_n = s.contact.damping;
+  params_.eta_t = s.contact.damping * s.contact.tangential_damping_ratio;
+  params_.mu = s.contact.friction;
+
+  const std::size_t n = particles.size();
+  double dmax = 0.0;
+  for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
+  // Cells at least one largest diameter wide (so touching pairs are neighbours), and no more
+  // cells than about twice the particles, so a sparse scene (one dropped particle) costs nothing.
+  const double sparse = std::sqrt(width_ * height_ / (2.0 * static_cast<double>(n)));
+  grid_.configure(width_, height_, std::max(dmax, sparse));
+  state_.particles = std::move(particles);
+  state_.pairs.resize(n);
+  previous_.resize(n);
+  state_.walls.resize(n, static_cast<int>(walls_.size()));
+  // Newmark and Verlet carry the last acceleration; at rest with no contacts it is gravity.
+  auto& p = state_.particles;
+  for (std::size_t i = 0; i < n; ++i) {
+    p.ax[i] = p.ext_fx[i] * p.inv_mass[i];
+    p.ay[i] = p.ext_fy[i] * p.inv_mass[i] - gravity_;
+  }
+}
+
+void DemSolver::set_state(DemState s) {
+  if (s.particles.size() != state_.particles.size())
+    throw InputError("state has " + std::to_string(s.particles.size()) +
+                     " particles but the scene has " + std::to_string(state_.particles.size()));
+  if (s.walls.walls != static_cast<int>(walls_.size()))
+    throw InputError("state was saved with " + std::to_string(s.walls.walls) +
+                     " walls but the scene has " + std::to_string(walls_.size()));
+  state_ = std::move(s);
+}
+
+void DemSolver::fail(const std::string& what) const {
+  std::ostringstream os;
+  os.precision(6);
+  os << what << " at t = " << state_.time << " s (step " << state_.step << ")";
+  throw SimulationFailure(os.str());
+}
+
+template <bool Incremental>
+void DemSolver::evaluate_forces(double dtau) {
+  Particles& P = state_.particles;
+  const std::size_t n = P.size();
+  const double* x = P.x.data();
+  const double* y = P.y.data();
+  const double* vx = P.vx.data();
+  const double* vy = P.vy.data();
+  const double* w = P.w.data();
+  const double* r = P.radius.data();
+  double* fx = P.fx.data();
+  double* fy = P.fy.data();
+  double* tq = P.torque.data();
+
+  for (std::size_t i = 0; i < n; ++i) {
+    fx[i] = P.ext_fx[i];
+    fy[i] = P.ext_fy[i] - P.mass[i] * gravity_;
+    tq[i] = 0.0;
+  }
+
+  std::swap(previous_, state_.pairs);
+  PairHistory& hist = state_.pairs;
+  hist.clear_counts();
+  grid_.build(P.x, P.y);
+
+  double max_ratio = 0.0;
+  int contacts = 0, sliding = 0;
+  bool overflow = false;
+  grid_.for_each_candidate_pair([&](int a, int b) {
+    const int i = std::min(a, b), j = std::max(a, b);
+    const double px = x[j] - x[i], py = y[j] - y[i];
+    const double R = r[i] + r[j];
+    const double L2 = px * px + py * py;
+    if (L2 >= R * R) return;
+    const double L = std::sqrt(L2);
+    if (L <= 0.0) return;  // coincident centres: caught below as a full overlap
+    const double nx = px / L, ny = py / L;
+    const double tx = -ny, ty = nx;
+    const double vrx = vx[i] - vx[j], vry = vy[i] - vy[j];
+    const double vn = vrx * nx + vry * ny;
+    const double vt = vrx * tx + vry * ty + w[i] * r[i] + w[j] * r[j];
+
+    double dn = 0.0, dt = 0.0, tau = dtau;
+    const int slot = previous_.find(i, j);
+    if (slot >= 0) {
+      dn = previous_.dn[slot];
+      dt = previous_.dt[slot];
+    } else if (Incremental) {
+      tau = std::min(time_since_touch(px, py, -vrx, -vry, R, L), dtau);  // eq 13
+    }
+    if constexpr (Incremental) {
+      dn += vn * tau;  // eqs 14, 16
+    } else {
+      dn = R - L;
+    }
+    dt += vt * tau;  // eqs 15, 17
+    const ContactForce f = contact_force(params_, dn, dt, vn, vt);
+
+    const int k = hist.count[i];
+    if (k == PairHistory::kSlots) {
+      overflow = true;
+      return;
+    }
+    const std::size_t idx = static_cast<std::size_t>(i) * PairHistory::kSlots + k;
+    hist.partner[idx] = j;
+    hist.dn[idx] = dn;
+    hist.dt[idx] = dt;
+    hist.count[i] = static_cast<std::uint8_t>(k + 1);
+
+    const double Fx = f.fn * nx + f.ft * tx, Fy = f.fn * ny + f.ft * ty;
+    fx[i] += Fx;
+    fy[i] += Fy;
+    fx[j] -= Fx;
+    fy[j] -= Fy;
+    tq[i] += r[i] * f.ft;
+    tq[j] += r[j] * f.ft;
+    ++contacts;
+    sliding += f.sliding;
+    const double ratio = 1.0 - L / R;
+    if (ratio > max_ratio) {
+      max_ratio = ratio;
+      worst_pair_i_ = i;
+      worst_pair_j_ = j;
+    }
+  });
+  if (overflow) fail("more than " + std::to_string(PairHistory::kSlots) +
+                     " contacts on one particle (runaway overlap)");
+
+  // Walls: one history slot per particle and wall.
+  WallHistory& wh = state_.walls;
+  const int nw = static_cast<int>(walls_.size());
+  double max_wall_ratio = 0.0;
+  int wall_contacts = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < nw; ++k) {
+      const Wall& wall = walls_[k];
+      const std::size_t s = i * nw + k;
+      const double d = wall.nx * x[i] + wall.ny * y[i] - wall.offset;
+      if (d >= r[i]) {
+        wh.active[s] = 0;
+        wh.dn[s] = 0.0;
+        wh.dt[s] = 0.0;
+        continue;
+      }
+      const double overlap = r[i] - d;
+      const double nx = -wall.nx, ny = -wall.ny;  // from the particle into the wall
+      const double tx = -ny, ty = nx;
+      const double vn = vx[i] * nx + vy[i] * ny;
+      const double vt = vx[i] * tx + vy[i] * ty + w[i] * r[i];
+      double dn = wh.dn[s], dt = wh.dt[s], tau = dtau;
+      if (!wh.active[s] && Incremental)
+        tau = std::min(time_since_touch_wall(overlap, vn), dtau);
+      if constexpr (Incremental) {
+        dn += vn * tau;
+      } else {
+        dn = overlap;
+      }
+      dt += vt * tau;
+      const ContactForce f = contact_force(params_, dn, dt, vn, vt);
+      wh.active[s] = 1;
+      wh.dn[s] = dn;
+      wh.dt[s] = dt;
+      fx[i] += f.fn * nx + f.ft * tx;
+      fy[i] += f.fn * ny + f.ft * ty;
+      tq[i] += r[i] * f.ft;
+      ++wall_contacts;
+      sliding += f.sliding;
+      max_wall_ratio = std::max(max_wall_ratio, overlap / r[i]);
+    }
+  }
+
+  diag_.max_overlap_ratio = max_ratio;
+  diag_.max_wall_overlap_ratio = max_wall_ratio;
+  diag_.pair_contacts = contacts;
+  diag_.wall_contacts = wall_contacts;
+  diag_.sliding_contacts = sliding;
+}
+
+void DemSolver::evaluate_forces_dispatch(double dtau) {
+  if (incremental_) {
+    evaluate_forces<true>(dtau);
+  } else {
+    evaluate_forces<false>(dtau);
+  }
+}
+
+void DemSolver::step() {
+  Particles& P = state_.particles;
+  const std::size_t n = P.size();
+  const double h = dt_;
+  switch (integrator_) {
+    case Integrator::Newmark: {
+      // Eqs 24-28 with alpha = 1/2, beta = 1/4: predict, evaluate forces at the prediction,
+      // correct with the new acceleration.
+      const double hh4 = 0.25 * h * h;
+      for (std::size_t i = 0; i < n; ++i) {
+        P.x[i] += h * P.vx[i] + hh4 * P.ax[i];
+        P.y[i] += h * P.vy[i] + hh4 * P.ay[i];
+        P.vx[i] += 0.5 * h * P.ax[i];
+        P.vy[i] += 0.5 * h * P.ay[i];
+        P.w[i] += 0.5 * h * P.aw[i];
+      }
+      evaluate_forces_dispatch(h);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double ax = P.fx[i] * P.inv_mass[i], ay = P.fy[i] * P.inv_mass[i];
+        const double aw = P.torque[i] * P.inv_inertia[i];
+        P.vx[i] += 0.5 * h * ax;
+        P.vy[i] += 0.5 * h * ay;
+        P.w[i] += 0.5 * h * aw;
+        P.x[i] += hh4 * ax;
+        P.y[i] += hh4 * ay;
+        P.ax[i] = ax;
+        P.ay[i] = ay;
+        P.aw[i] = aw;
+      }
+      break;
+    }
+    case Integrator::VelocityVerlet: {
+      // Kick half, drift, forces with the half-step velocity, kick half.
+      for (std::size_t i = 0; i < n; ++i) {
+        P.vx[i] += 0.5 * h * P.ax[i];
+        P.vy[i] += 0.5 * h * P.ay[i];
+        P.w[i] += 0.5 * h * P.aw[i];
+        P.x[i] += h * P.vx[i];
+        P.y[i] += h * P.vy[i];
+      }
+      evaluate_forces_dispatch(h);
+      for (std::size_t i = 0; i < n; ++i) {
+        P.ax[i] = P.fx[i] * P.inv_mass[i];
+        P.ay[i] = P.fy[i] * P.inv_mass[i];
+        P.aw[i] = P.torque[i] * P.inv_inertia[i];
+        P.vx[i] += 0.5 * h * P.ax[i];
+        P.vy[i] += 0.5 * h * P.ay[i];
+        P.w[i] += 0.5 * h * P.aw[i];
+      }
+      break;
+    }
+    case Integrator::SymplecticEuler: {
+      evaluate_forces_dispatch(h);
+      for (std::size_t i = 0; i < n; ++i) {
+        P.ax[i] = P.fx[i] * P.inv_mass[i];
+        P.ay[i] = P.fy[i] * P.inv_mass[i];
+        P.aw[i] = P.torque[i] * P.inv_inertia[i];
+        P.vx[i] += h * P.ax[i];
+        P.vy[i] += h * P.ay[i];
+        P.w[i] += h * P.aw[i];
+        P.x[i] += h * P.vx[i];
+        P.y[i] += h * P.vy[i];
+      }
+      break;
+    }
+  }
+  state_.time = static_cast<double>(++state_.step) * dt_;
+  finish_step();
+}
+
+void DemSolver::finish_step() {
+  const Particles& P = state_.particles;
+  const std::size_t n = P.size();
+  double ke = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double inertia = 1.0 / P.inv_inertia[i];
+    ke += 0.5 * P.mass[i] * (P.vx[i] * P.vx[i] + P.vy[i] * P.vy[i]) +
+          0.5 * inertia * P.w[i] * P.w[i];
+  }
+  diag_.kinetic_energy = ke;
+  if (!std::isfinite(ke)) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(P.vx[i] + P.vy[i] + P.w[i] + P.x[i] + P.y[i]))
+        fail("particle " + std::to_string(i) + " has a non-finite position or velocity (NaN)");
+    fail("kinetic energy is not finite");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = P.radius[i];
+    const char* where = nullptr;
+    if (!std::isfinite(P.x[i] + P.y[i])) where = "has a non-finite position (NaN)";
+    else if (P.x[i] < -r) where = "left the bed through the left wall";
+    else if (P.x[i] > width_ + r) where = "left the bed through the right wall";
+    else if (P.y[i] < -r) where = "left the bed through the bottom wall";
+    else if (P.y[i] > height_ + r) where = "left the bed through the top";
+    if (where) fail("particle " + std::to_string(i) + " " + where);
+  }
+  const double worst = std::max(diag_.max_overlap_ratio, 0.5 * diag_.max_wall_overlap_ratio);
+  if (worst > overlap_limit_) {
+    std::ostringstream os;
+    os.precision(3);
+    if (diag_.max_overlap_ratio >= 0.5 * diag_.max_wall_overlap_ratio)
+      os << "runaway overlap: particles " << worst_pair_i_ << " and " << worst_pair_j_
+         << " overlap by " << 100.0 * diag_.max_overlap_ratio << " % of their radii sum";
+    else
+      os << "runaway overlap: a particle overlaps a wall by " << 100.0 * diag_.max_wall_overlap_ratio
+         << " % of its radius";
+    os << " (limit " << 100.0 * overlap_limit_ << " %, diagnostics.overlap_limit)";
+    fail(os.str());
+  }
+}
+
+std::uint64_t DemSolver::state_hash() const {
+  Fnv1a h;
+  const Particles& P = state_.particles;
+  h.value(state_.time);
+  h.value(state_.step);
+  for (const auto* v : {&P.x, &P.y, &P.vx, &P.vy, &P.w, &P.ax, &P.ay, &P.aw}) h.values(*v);
+  const PairHistory& ph = state_.pairs;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    h.value(ph.count[i]);
+    for (int k = 0; k < ph.count[i]; ++k) {
+      const std::size_t s = i * PairHistory::kSlots + k;
+      h.value(ph.partner[s]);
+      h.value(ph.dn[s]);
+      h.value(ph.dt[s]);
+    }
+  }
+  h.values(state_.walls.active);
+  h.values(state_.walls.dn);
+  h.values(state_.walls.dt);
+  return h.digest();
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,128 @@
+// Binary state files for bit-exact restarts: positions, velocities, spins, accelerations, radii
+// and masses, pair and wall contact history, time and step.
+#include <cstring>
+#include <fstream>
+
+#include "core/errors.hpp"
+#include "dem/dem_solver.hpp"
+
+namespace fluidbed {
+namespace {
+
+constexpr char kMagic[8] = {'F', 'L', 'B', 'S', 'T', 'A', 'T', 'E'};
+constexpr std::uint32_t kVersion = 1;
+
+template <class T>
+void put(std::ostream& out, const T& v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+template <class T>
+void put_vec(std::ostream& out, const std::vector<T>& v) {
+  put(out, static_cast<std::uint64_t>(v.size()));
+  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+}
+
+struct Source {
+  std::istream& in;
+  const std::string& origin;
+  template <class T>
+  T get() {
+    T v{};
+    in.read(reinterpret_cast<char*>(&v), sizeof(T));
+    if (!in) throw InputError(origin + ": state file is truncated");
+    return v;
+  }
+  template <class T>
+  void get_vec(std::vector<T>& v, std::uint64_t expected) {
+    const auto n = get<std::uint64_t>();
+    if (n != expected) throw InputError(origin + ": state file is inconsistent (array sizes)");
+    v.resize(n);
+    in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+    if (!in) throw InputError(origin + ": state file is truncated");
+  }
+};
+
+}  // namespace
+
+void write_state(std::ostream& out, const DemState& s) {
+  out.write(kMagic, sizeof kMagic);
+  put(out, kVersion);
+  const auto& P = s.particles;
+  put(out, static_cast<std::uint64_t>(P.size()));
+  put(out, static_cast<std::int32_t>(PairHistory::kSlots));
+  put(out, static_cast<std::int32_t>(s.walls.walls));
+  put(out, s.time);
+  put(out, s.step);
+  for (const auto* v : {&P.x, &P.y, &P.vx, &P.vy, &P.w, &P.ax, &P.ay, &P.aw, &P.fx, &P.fy,
+                        &P.torque, &P.ext_fx, &P.ext_fy, &P.radius, &P.mass, &P.inv_mass,
+                        &P.inv_inertia})
+    put_vec(out, *v);
+  put_vec(out, s.pairs.count);
+  put_vec(out, s.pairs.partner);
+  put_vec(out, s.pairs.dn);
+  put_vec(out, s.pairs.dt);
+  put_vec(out, s.walls.active);
+  put_vec(out, s.walls.dn);
+  put_vec(out, s.walls.dt);
+}
+
+DemState read_state(std::istream& in, const std::string& origin) {
+  Source src{in, origin};
+  char magic[sizeof kMagic];
+  in.read(magic, sizeof magic);
+  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    throw InputError(origin + ": not a fluidbed state file");
+  if (src.get<std::uint32_t>() != kVersion)
+    throw InputError(origin + ": state file version is not supported");
+  DemState s;
+  const auto n = src.get<std::uint64_t>();
+  if (n == 0 || n > (1ULL << 32)) throw InputError(origin + ": state file is inconsistent (count)");
+  if (src.get<std::int32_t>() != PairHistory::kSlots)
+    throw InputError(origin + ": state file has a different contact-slot layout");
+  const auto walls = src.get<std::int32_t>();
+  if (walls < 0 || walls > 16) throw InputError(origin + ": state file is inconsistent (walls)");
+  s.time = src.get<double>();
+  s.step = src.get<std::int64_t>();
+  auto& P = s.particles;
+  for (auto* v : {&P.x, &P.y, &P.vx, &P.vy, &P.w, &P.ax, &P.ay, &P.aw, &P.fx, &P.fy, &P.torque,
+                  &P.ext_fx, &P.ext_fy, &P.radius, &P.mass, &P.inv_mass, &P.inv_inertia})
+    src.get_vec(*v, n);
+  src.get_vec(s.pairs.count, n);
+  src.get_vec(s.pairs.partner, n * PairHistory::kSlots);
+  src.get_vec(s.pairs.dn, n * PairHistory::kSlots);
+  src.get_vec(s.pairs.dt, n * PairHistory::kSlots);
+  s.walls.walls = walls;
+  src.get_vec(s.walls.active, n * walls);
+  src.get_vec(s.walls.dn, n * walls);
+  src.get_vec(s.walls.dt, n * walls);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.pairs.count[i] > PairHistory::kSlots)
+      throw InputError(origin + ": state file is inconsistent (contact count)");
+    for (int k = 0; k < s.pairs.count[i]; ++k) {
+      const auto j = s.pairs.partner[i * PairHistory::kSlots + k];
+      if (j <= static_cast<std::int64_t>(i) || j >= static_cast<std::int64_t>(n))
+        throw InputError(origin + ": state file is inconsistent (contact partner)");
+    }
+  }
+  return s;
+}
+
+void save_state_file(const std::string& path, const DemState& s) {
+  const std::string tmp = path + ".partial";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError("cannot write state file " + path);
+    write_state(out, s);
+    if (!out) throw InputError("cannot write state file " + path);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw InputError("cannot write state file " + path);
+}
+
+DemState load_state_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot read state file " + path);
+  return read_state(in, path);
+}
+
+}  // namespace fluidbed

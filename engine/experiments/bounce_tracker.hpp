@@ -1,0 +1,70 @@
+#pragma once
+// The drop test's measurements, taken step by step on particle 0 and the bottom wall (wall 0):
+// the restitution of each bounce (rebound over impact speed, both extrapolated ballistically to
+// the instant of touching, so the step's phase does not bias them) and the apex height after each
+// bounce, measured as the gap between the sphere and the floor.
+#include <cmath>
+#include <vector>
+
+#include "dem/dem_solver.hpp"
+
+namespace fluidbed {
+
+class BounceTracker {
+ public:
+  BounceTracker(const DemSolver& dem, double gravity) : g_(gravity) {
+    const Particles& p = dem.particles();
+    drop_height_ = p.y[0] - p.radius[0];
+    record(dem);
+  }
+
+  // Call after every step.
+  void observe(const DemSolver& dem) {
+    const bool touching = dem.state().walls.active[0] != 0;  // particle 0, bottom wall
+    if (touching && !in_contact_) {
+      in_contact_ = true;
+      impact_speed_ = touch_speed(last_gap_, last_vy_);
+      if (bounces_ > 0) apex_heights_.push_back(apex_);
+    } else if (!touching && in_contact_) {
+      in_contact_ = false;
+      ++bounces_;
+      record(dem);
+      restitutions_.push_back(touch_speed(last_gap_, last_vy_) / impact_speed_);
+      apex_ = last_gap_;
+      return;
+    }
+    record(dem);
+    if (!in_contact_ && bounces_ > 0) apex_ = std::max(apex_, last_gap_);
+  }
+
+  // Apex heights after each bounce so far (the current flight counts once it has turned down).
+  std::vector<double> apex_heights() const {
+    std::vector<double> a = apex_heights_;
+    if (!in_contact_ && bounces_ > static_cast<int>(a.size()) && last_vy_ < 0.0) a.push_back(apex_);
+    return a;
+  }
+  const std::vector<double>& restitutions() const { return restitutions_; }
+  double drop_height() const { return drop_height_; }
+
+ private:
+  void record(const DemSolver& dem) {
+    const Particles& p = dem.particles();
+    last_gap_ = p.y[0] - p.radius[0];
+    last_vy_ = p.vy[0];
+  }
+  double touch_speed(double gap, double vy) const {
+    return std::sqrt(vy * vy + 2.0 * g_ * std::max(gap, 0.0));
+  }
+
+  double g_;
+  double drop_height_ = 0.0;
+  double last_gap_ = 0.0, last_vy_ = 0.0;
+  bool in_contact_ = false;
+  int bounces_ = 0;
+  double impact_speed_ = 0.0;
+  double apex_ = 0.0;
+  std::vector<double> restitutions_;
+  std::vector<double> apex_heights_;
+};
+
+}  // namespace fluidbed

@@ -1,0 +1,217 @@
+#include "scene/scene_loader.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "core/errors.hpp"
+#include <algorithm>
+
+namespace fluidbed {
+namespace {
+
+std::string describe(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "true or false";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    default: return "a date or time";
+  }
+}
+
+// Reads one section's keys from a TOML table into its struct; refuses unknown keys and wrong types.
+struct Reader {
+  const toml::table& table;
+  std::string section;
+  std::string origin;
+
+  std::string where(std::string_view key) const {
+    return origin + ": " + section + "." + std::string(key);
+  }
+  void type_error(std::string_view key, const toml::node& n, const char* expected) const {
+    throw InputError(where(key) + " must be " + expected + ", not " + describe(n));
+  }
+
+  void operator()(std::string_view key, double& field, std::string_view) const {
+    const toml::node* n = table.get(key);
+    if (!n) return;
+    if (auto v = n->value_exact<double>()) {
+      field = *v;
+    } else if (auto i = n->value_exact<std::int64_t>()) {
+      field = static_cast<double>(*i);
+    } else {
+      type_error(key, *n, "a number");
+    }
+    if (!std::isfinite(field)) throw InputError(where(key) + " must be a finite number");
+  }
+  void operator()(std::string_view key, int& field, std::string_view) const {
+    const toml::node* n = table.get(key);
+    if (!n) return;
+    auto v = n->value_exact<std::int64_t>();
+    if (!v) type_error(key, *n, "an integer");
+    if (*v < std::numeric_limits<int>::min() || *v > std::numeric_limits<int>::max())
+      throw InputError(where(key) + " is out of range");
+    field = static_cast<int>(*v);
+  }
+  void operator()(std::string_view key, std::uint64_t& field, std::string_view) const {
+    const toml::node* n = table.get(key);
+    if (!n) return;
+    auto v = n->value_exact<std::int64_t>();
+    if (!v) type_error(key, *n, "an integer");
+    if (*v < 0) throw InputError(where(key) + " must not be negative");
+    field = static_cast<std::uint64_t>(*v);
+  }
+  void operator()(std::string_view key, bool& field, std::string_view) const {
+    const toml::node* n = table.get(key);
+    if (!n) return;
+    auto v = n->value_exact<bool>();
+    if (!v) type_error(key, *n, "true or false");
+    field = *v;
+  }
+  void operator()(std::string_view key, std::string& field, std::string_view) const {
+    const toml::node* n = table.get(key);
+    if (!n) return;
+    auto v = n->value_exact<std::string>();
+    if (!v) type_error(key, *n, "a string");
+    field = *v;
+  }
+};
+
+// Collects the key names a section knows.
+struct KeyLister {
+  std::vector<std::string>* keys;
+  template <class T>
+  void operator()(std::string_view key, T&, std::string_view) const {
+    keys->emplace_back(key);
+  }
+};
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+void apply_override(toml::table& root, const std::string& text) {
+  const auto eq = text.find('=');
+  const auto dot = text.find('.');
+  if (eq == std::string::npos || dot == std::string::npos || dot > eq)
+    throw InputError("--set " + text + ": expected section.key=value");
+  const std::string section = text.substr(0, dot);
+  const std::string key = text.substr(dot + 1, eq - dot - 1);
+  const std::string value = text.substr(eq + 1);
+  if (section.empty() || key.empty() || key.find('.') != std::string::npos)
+    throw InputError("--set " + text + ": expected section.key=value");
+  // The value in TOML syntax (numbers, true/false, "quoted"); a bare word is a string.
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    parsed.insert_or_assign("v", value);
+  }
+  if (!root.contains(section)) root.insert(section, toml::table{});
+  toml::table* sec = root[section].as_table();
+  if (!sec) throw InputError("--set " + text + ": " + section + " is not a section");
+  sec->insert_or_assign(key, *parsed.get("v"));
+}
+
+Settings convert(const toml::table& root, const std::string& origin) {
+  Settings s;
+  std::vector<std::string> known_sections;
+  visit_sections(s, [&](std::string_view name, auto& section) {
+    known_sections.emplace_back(name);
+    const toml::node* node = root.get(name);
+    if (!node) return;
+    const toml::table* table = node->as_table();
+    if (!table) throw InputError(origin + ": " + std::string(name) + " must be a table");
+    std::vector<std::string> keys;
+    visit_fields(section, KeyLister{&keys});
+    for (const auto& [k, v] : *table) {
+      if (std::find(keys.begin(), keys.end(), k.str()) == keys.end())
+        throw InputError(origin + ": unknown key " + std::string(name) + "." + std::string(k.str()) +
+                         " (known: " + join(keys) + ")");
+    }
+    visit_fields(section, Reader{*table, std::string(name), origin});
+  });
+  for (const auto& [k, v] : root) {
+    if (std::find(known_sections.begin(), known_sections.end(), k.str()) == known_sections.end())
+      throw InputError(origin + ": unknown section [" + std::string(k.str()) +
+                       "] (known: " + join(known_sections) + ")");
+  }
+  return s;
+}
+
+Settings parse_root(toml::table root, const std::string& origin,
+                    const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides) apply_override(root, o);
+  Settings s = convert(root, origin);
+  validate(s);
+  return s;
+}
+
+}  // namespace
+
+Settings parse_scene(const std::string& toml_text, const std::string& origin,
+                     const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, origin);
+  } catch (const toml::parse_error& e) {
+    const auto& b = e.source().begin;
+    throw InputError(origin + ":" + std::to_string(b.line) + ":" + std::to_string(b.column) +
+                     ": " + std::string(e.description()));
+  }
+  return parse_root(std::move(root), origin, overrides);
+}
+
+Settings load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot read scene file " + path);
+  std::stringstream text;
+  text << in.rdbuf();
+  Settings s = parse_scene(text.str(), path, overrides);
+  s.source_dir = std::filesystem::absolute(path).parent_path().string();
+  return s;
+}
+
+namespace {
+
+struct TomlWriter {
+  std::ostringstream* out;
+  void operator()(std::string_view key, const std::string& v, std::string_view) const {
+    *out << key << " = " << toml::value<std::string>(v) << "\n";
+  }
+  void operator()(std::string_view key, bool v, std::string_view) const {
+    *out << key << " = " << (v ? "true" : "false") << "\n";
+  }
+  void operator()(std::string_view key, double v, std::string_view unit) const {
+    *out << key << " = " << toml::value<double>(v);
+    if (!unit.empty()) *out << "  # " << unit;
+    *out << "\n";
+  }
+  template <class I>
+  void operator()(std::string_view key, I v, std::string_view) const {
+    *out << key << " = " << v << "\n";
+  }
+};
+
+}  // namespace
+
+std::string to_toml(const Settings& settings) {
+  Settings s = settings;  // the visitors take non-const references
+  std::ostringstream out;
+  visit_sections(s, [&](std::string_view name, auto& section) {
+    out << "[" << name << "]\n";
+    visit_fields(section, TomlWriter{&out});
+    out << "\n";
+  });
+  return out.str();
+}
+
+}  // namespace fluidbed

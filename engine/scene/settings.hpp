@@ -1,0 +1,151 @@
+#pragma once
+// Scene settings: one plain struct per TOML section, defaults from the paper (Xu & Yu 1997,
+// Table 1), the unit of every field beside it. `visit_fields` lists each section's keys once, so
+// the loader, the resolved-scene writer and the tests all see the same names.
+#include <cstdint>
+#include <string>
+
+namespace fluidbed {
+
+struct SceneInfo {
+  std::string name = "unnamed";
+  // What the run measures on top of the common diagnostics: "bed" (none extra), "drop" (bounce
+  // heights and restitution), "packing" (bed height and solid fraction).
+  std::string kind = "bed";
+  std::string description;
+};
+
+struct DomainSettings {
+  double width = 0.15;      // m, x extent (left wall at x = 0)
+  double height = 0.9;      // m, y extent (bottom wall at y = 0)
+  double thickness = 0.004; // m, z extent of the slab between front and back walls
+  bool top_wall = false;    // a rigid wall at y = height (the paper's bed is open at the top)
+};
+
+struct ParticleSettings {
+  int count = 2400;          // number of spheres
+  double diameter = 0.004;   // m
+  double density = 2700.0;   // kg/m^3
+  // "lattice": the paper's packing start (cells of one diameter, alternate rows shifted by a
+  // radius, particles in randomly chosen cells); "single": one particle at (x, y);
+  // "state": positions, velocities, spins and contact history from state_file.
+  std::string placement = "lattice";
+  std::uint64_t seed = 1;    // random placement
+  double fill_height = 0.0;  // m, lattice cells only below this height (0: the whole domain)
+  double x = 0.075;          // m, "single" placement
+  double y = 0.05;           // m
+  double vx = 0.0;           // m/s
+  double vy = 0.0;           // m/s
+  double spin = 0.0;         // rad/s about z
+  std::string state_file;    // "state" placement; relative paths are relative to the scene file
+};
+
+struct ContactSettings {
+  double stiffness = 50000.0;             // N/m, kappa_n
+  double tangential_stiffness_ratio = 1.0;  // kappa_t / kappa_n (the paper: 1)
+  double damping = 0.15;                  // kg/s, eta_n
+  double tangential_damping_ratio = 1.0;  // eta_t / eta_n (the paper: 1)
+  double friction = 0.3;                  // gamma, particles and walls
+  // "incremental": the paper's eqs 13-17 (displacements accumulated from increments, the first
+  // one over the backward-projected time since touching); "geometric": delta_n = R_i + R_j - L.
+  std::string displacement = "incremental";
+};
+
+struct TimeSettings {
+  double dt = 1.5e-5;  // s
+  double end = 1.0;    // s, simulated time of a run (--until overrides)
+  // "newmark" (the paper's predictor-corrector, eqs 24-28), "velocity_verlet", "symplectic_euler"
+  std::string integrator = "newmark";
+};
+
+struct PhysicsSettings {
+  double gravity = 9.81;  // m/s^2, along -y
+};
+
+struct DiagnosticsSettings {
+  double output_interval = 1e-3;   // s, one timeseries row per interval
+  double averaging_start = 1.0;    // s, tau_1 of eq 30; also where "after start-up" begins
+  double overlap_limit = 0.2;      // overlap ratio treated as a runaway (the run fails)
+  std::string save_state;          // write the final state here (relative to --out)
+};
+
+struct Settings {
+  SceneInfo scene;
+  DomainSettings domain;
+  ParticleSettings particles;
+  ContactSettings contact;
+  TimeSettings time;
+  PhysicsSettings physics;
+  DiagnosticsSettings diagnostics;
+  std::string source_dir = ".";  // folder of the scene file, for relative paths (not a TOML key)
+};
+
+// v(key, field, unit) for every field of a section, in file order.
+template <class V>
+void visit_fields(SceneInfo& s, V&& v) {
+  v("name", s.name, "");
+  v("kind", s.kind, "");
+  v("description", s.description, "");
+}
+template <class V>
+void visit_fields(DomainSettings& s, V&& v) {
+  v("width", s.width, "m");
+  v("height", s.height, "m");
+  v("thickness", s.thickness, "m");
+  v("top_wall", s.top_wall, "");
+}
+template <class V>
+void visit_fields(ParticleSettings& s, V&& v) {
+  v("count", s.count, "");
+  v("diameter", s.diameter, "m");
+  v("density", s.density, "kg/m^3");
+  v("placement", s.placement, "");
+  v("seed", s.seed, "");
+  v("fill_height", s.fill_height, "m");
+  v("x", s.x, "m");
+  v("y", s.y, "m");
+  v("vx", s.vx, "m/s");
+  v("vy", s.vy, "m/s");
+  v("spin", s.spin, "rad/s");
+  v("state_file", s.state_file, "");
+}
+template <class V>
+void visit_fields(ContactSettings& s, V&& v) {
+  v("stiffness", s.stiffness, "N/m");
+  v("tangential_stiffness_ratio", s.tangential_stiffness_ratio, "");
+  v("damping", s.damping, "kg/s");
+  v("tangential_damping_ratio", s.tangential_damping_ratio, "");
+  v("friction", s.friction, "");
+  v("displacement", s.displacement, "");
+}
+template <class V>
+void visit_fields(TimeSettings& s, V&& v) {
+  v("dt", s.dt, "s");
+  v("end", s.end, "s");
+  v("integrator", s.integrator, "");
+}
+template <class V>
+void visit_fields(PhysicsSettings& s, V&& v) {
+  v("gravity", s.gravity, "m/s^2");
+}
+template <class V>
+void visit_fields(DiagnosticsSettings& s, V&& v) {
+  v("output_interval", s.output_interval, "s");
+  v("averaging_start", s.averaging_start, "s");
+  v("overlap_limit", s.overlap_limit, "");
+  v("save_state", s.save_state, "");
+}
+
+// v(section_name, section_struct) for every section.
+template <class V>
+void visit_sections(Settings& s, V&& v) {
+  v("scene", s.scene);
+  v("domain", s.domain);
+  v("particles", s.particles);
+  v("contact", s.contact);
+  v("time", s.time);
+  v("physics", s.physics);
+  v("diagnostics", s.diagnostics);
+}
+
+}  // namespace fluidbed

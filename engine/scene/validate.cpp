@@ -1,0 +1,88 @@
+// One validation pass over a scene: impossible values are refused with the key's name.
+#include <cmath>
+#include <string>
+
+#include "core/errors.hpp"
+#include "scene/lattice.hpp"
+#include "scene/scene_loader.hpp"
+
+namespace fluidbed {
+namespace {
+
+[[noreturn]] void refuse(const std::string& key, const std::string& why) {
+  throw InputError(key + " " + why);
+}
+void positive(const std::string& key, double v) {
+  if (!(v > 0.0)) refuse(key, "must be positive (got " + std::to_string(v) + ")");
+}
+void non_negative(const std::string& key, double v) {
+  if (!(v >= 0.0)) refuse(key, "must not be negative (got " + std::to_string(v) + ")");
+}
+void one_of(const std::string& key, const std::string& v, std::initializer_list<const char*> ok) {
+  std::string list;
+  for (const char* o : ok) {
+    if (v == o) return;
+    list += (list.empty() ? "" : ", ") + std::string(o);
+  }
+  refuse(key, "is \"" + v + "\"; expected one of: " + list);
+}
+
+}  // namespace
+
+void validate(const Settings& s) {
+  one_of("scene.kind", s.scene.kind, {"bed", "drop", "packing"});
+
+  const auto& d = s.domain;
+  positive("domain.width", d.width);
+  positive("domain.height", d.height);
+  positive("domain.thickness", d.thickness);
+
+  const auto& p = s.particles;
+  if (p.count < 1) refuse("particles.count", "must be at least 1");
+  positive("particles.diameter", p.diameter);
+  positive("particles.density", p.density);
+  one_of("particles.placement", p.placement, {"lattice", "single", "state"});
+  if (p.diameter > d.width || p.diameter > d.height)
+    refuse("particles.diameter", "is larger than the domain");
+  // The slab must hold one layer: spheres move in x-y between the front and back walls.
+  if (d.thickness < p.diameter)
+    refuse("domain.thickness", "must be at least particles.diameter (one layer of spheres)");
+  non_negative("particles.fill_height", p.fill_height);
+  if (p.fill_height > d.height) refuse("particles.fill_height", "is above domain.height");
+  if (p.placement == "lattice") {
+    const double top = p.fill_height > 0.0 ? p.fill_height : d.height;
+    const auto cells = lattice_sites(d.width, top, p.diameter).size();
+    if (static_cast<std::size_t>(p.count) > cells)
+      refuse("particles.count", "is " + std::to_string(p.count) + " but only " +
+                                    std::to_string(cells) + " particles fit in the domain");
+  }
+  if (p.placement == "single") {
+    if (p.count != 1) refuse("particles.count", "must be 1 for placement = \"single\"");
+    const double r = 0.5 * p.diameter;
+    if (p.x < r || p.x > d.width - r) refuse("particles.x", "puts the particle through a wall");
+    if (p.y < r || (d.top_wall && p.y > d.height - r))
+      refuse("particles.y", "puts the particle through a wall");
+  }
+  if (p.placement == "state" && p.state_file.empty())
+    refuse("particles.state_file", "is needed for placement = \"state\"");
+
+  const auto& c = s.contact;
+  positive("contact.stiffness", c.stiffness);
+  non_negative("contact.tangential_stiffness_ratio", c.tangential_stiffness_ratio);
+  non_negative("contact.damping", c.damping);
+  non_negative("contact.tangential_damping_ratio", c.tangential_damping_ratio);
+  non_negative("contact.friction", c.friction);
+  one_of("contact.displacement", c.displacement, {"incremental", "geometric"});
+
+  positive("time.dt", s.time.dt);
+  non_negative("time.end", s.time.end);
+  one_of("time.integrator", s.time.integrator, {"newmark", "velocity_verlet", "symplectic_euler"});
+  if (!std::isfinite(s.physics.gravity)) refuse("physics.gravity", "must be finite");
+
+  positive("diagnostics.output_interval", s.diagnostics.output_interval);
+  non_negative("diagnostics.averaging_start", s.diagnostics.averaging_start);
+  if (!(s.diagnostics.overlap_limit > 0.0 && s.diagnostics.overlap_limit <= 1.0))
+    refuse("diagnostics.overlap_limit", "must be in (0, 1]");
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,67 @@
+#include "sim/placement.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <numeric>
+
+#include "core/errors.hpp"
+#include "core/random.hpp"
+#include "scene/lattice.hpp"
+
+namespace fluidbed {
+
+std::string scene_path(const Settings& s, const std::string& path) {
+  std::filesystem::path p(path);
+  if (p.is_absolute()) return p.string();
+  return (std::filesystem::path(s.source_dir) / p).lexically_normal().string();
+}
+
+Particles place_particles(const Settings& s) {
+  const auto& ps = s.particles;
+  Particles p;
+  const std::size_t n = static_cast<std::size_t>(ps.count);
+  p.resize(n);
+  for (std::size_t i = 0; i < n; ++i) p.set_sphere(i, ps.diameter, ps.density);
+  if (ps.placement == "single") {
+    p.x[0] = ps.x;
+    p.y[0] = ps.y;
+    p.vx[0] = ps.vx;
+    p.vy[0] = ps.vy;
+    p.w[0] = ps.spin;
+  } else if (ps.placement == "lattice") {
+    const double top = ps.fill_height > 0.0 ? ps.fill_height : s.domain.height;
+    const auto sites = lattice_sites(s.domain.width, top, ps.diameter);
+    if (sites.size() < n)
+      throw InputError("particles.count: only " + std::to_string(sites.size()) + " fit");
+    // Partial Fisher-Yates: the first n of a seeded shuffle of the cells.
+    std::vector<std::size_t> order(sites.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    SplitMix64 rng(ps.seed);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t k = i + rng.below(order.size() - i);
+      std::swap(order[i], order[k]);
+      p.x[i] = sites[order[i]].x;
+      p.y[i] = sites[order[i]].y;
+    }
+  } else {
+    throw InputError("particles.placement \"" + ps.placement + "\" does not place particles");
+  }
+  return p;
+}
+
+DemState load_scene_state(const Settings& s) {
+  const std::string path = scene_path(s, s.particles.state_file);
+  DemState st = load_state_file(path);
+  auto& p = st.particles;
+  if (p.size() != static_cast<std::size_t>(s.particles.count))
+    throw InputError(path + ": holds " + std::to_string(p.size()) +
+                     " particles but particles.count is " + std::to_string(s.particles.count));
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (std::fabs(2.0 * p.radius[i] - s.particles.diameter) > 1e-12 * s.particles.diameter)
+      throw InputError(path + ": particle diameters differ from particles.diameter");
+    p.set_sphere(i, s.particles.diameter, s.particles.density);
+  }
+  return st;
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,40 @@
+#pragma once
+// Running a simulation to an end time while recording the timeseries and the summary (the output
+// contract of docs/architecture: summary.json keys, timeseries.csv columns).
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "sim/simulation.hpp"
+
+namespace fluidbed {
+
+struct TimeseriesRow {
+  double t = 0.0;                       // s
+  double dp = 0.0;                      // Pa
+  double max_overlap_ratio = 0.0;       // largest over the interval since the previous row
+  double max_wall_overlap_ratio = 0.0;  // idem
+  double kinetic_energy = 0.0;          // J
+  int pair_contacts = 0;
+  int wall_contacts = 0;
+};
+
+struct RunOptions {
+  double until = -1.0;  // s, simulated time to reach; < 0: the scene's time.end
+  // Called about every progress_interval wall seconds with the simulation and the wall time so far.
+  std::function<void(const Simulation&, double)> progress;
+  double progress_interval = 0.5;  // s
+};
+
+struct RunResult {
+  nlohmann::json summary;
+  std::vector<TimeseriesRow> rows;
+};
+
+// Steps `sim` to the end time. Throws SimulationFailure when the run blows up.
+RunResult run_simulation(Simulation& sim, const RunOptions& options);
+
+// Writes DIR/summary.json and DIR/timeseries.csv (each complete or not at all).
+void write_run_outputs(const std::string& dir, const RunResult& r);
+
+}  // namespace fluidbed
