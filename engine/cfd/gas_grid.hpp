@@ -1,0 +1,27 @@
+#pragma once
+// The gas grid: uniform cells over the bed (the paper: 15 x 45 cells of 10 mm x 20 mm), one
+// cell deep (dz = the slab thickness, eq 23). Cells are numbered c = j * nx + i, i along x
+// (left to right), j along y (bottom to top). Shared by the gas solver and the coupler.
+#include <algorithm>
+
+namespace fluidbed {
+
+struct GasGrid {
+  int nx = 15;           // cells across
+  int ny = 45;           // cells up
+  double width = 0.15;   // m
+  double height = 0.9;   // m
+  double depth = 0.004;  // m, slab thickness
+
+  double dx() const { return width / nx; }
+  double dy() const { return height / ny; }
+  double cell_volume() const { return dx() * dy() * depth; }  // eq 23
+  int cells() const { return nx * ny; }
+  int index(int i, int j) const { return j * nx + i; }
+  // Column and row of the cell holding (x, y); points outside are clamped to the edge cells.
+  int column(double x) const { return static_cast<int>(std::clamp(x / dx(), 0.0, nx - 1.0)); }
+  int row(double y) const { return static_cast<int>(std::clamp(y / dy(), 0.0, ny - 1.0)); }
+  int cell_of(double x, double y) const { return index(column(x), row(y)); }
+};
+
+}  // namespace fluidbed

@@ -1,0 +1,90 @@
+#pragma once
+// Small helpers shared by the test binaries.
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "dem/dem_solver.hpp"
+#include "scene/settings.hpp"
+
+namespace fluidbed::testing {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The paper's particle (D = 4 mm, rho = 2700 kg/m^3).
+inline double paper_mass() { return 2700.0 * kPi * 0.004 * 0.004 * 0.004 / 6.0; }
+
+// Restitution of a linear spring-dashpot contact of effective mass m (closed form).
+inline double analytic_restitution(double k, double eta, double m) {
+  const double zeta = eta / (2.0 * std::sqrt(k * m));
+  return std::exp(-kPi * zeta / std::sqrt(1.0 - zeta * zeta));
+}
+
+// A single particle at (x, y) with velocity (vx, vy): the drop and rolling scenes.
+inline Settings single_particle(double x, double y, double vx = 0.0, double vy = 0.0) {
+  Settings s;
+  s.scene.kind = "drop";
+  s.particles.count = 1;
+  s.particles.placement = "single";
+  s.particles.x = x;
+  s.particles.y = y;
+  s.particles.vx = vx;
+  s.particles.vy = vy;
+  return s;
+}
+
+// Particles of the paper's size at given positions and velocities, for solver-level tests.
+inline Particles make_particles(std::initializer_list<std::array<double, 5>> xyvw,
+                                double diameter = 0.004, double density = 2700.0) {
+  Particles p;
+  p.resize(xyvw.size());
+  std::size_t i = 0;
+  for (const auto& q : xyvw) {
+    p.set_sphere(i, diameter, density);
+    p.x[i] = q[0];
+    p.y[i] = q[1];
+    p.vx[i] = q[2];
+    p.vy[i] = q[3];
+    p.w[i] = q[4];
+    ++i;
+  }
+  return p;
+}
+
+// A fresh folder under the system temp dir.
+inline std::filesystem::path temp_dir(const std::string& name) {
+  auto d = std::filesystem::temp_directory_path() / ("fluidbed-test-" + name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+inline void write_file(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
+
+// Runs the fluidbed binary with arguments; returns the exit status and what it printed on stderr.
+struct CommandResult {
+  int status;
+  std::string err;
+  std::string out;
+};
+inline std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+inline CommandResult run_fluidbed(const std::string& args, const std::string& tag) {
+  const auto dir = temp_dir("cmd-" + tag);
+  const std::string cmd = std::string(FLUIDBED_BINARY) + " " + args + " > " +
+                          (dir / "out.txt").string() + " 2> " + (dir / "err.txt").string();
+  const int raw = std::system(cmd.c_str());
+  const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return {status, read_file(dir / "err.txt"), read_file(dir / "out.txt")};
+}
+
+}  // namespace fluidbed::testing

@@ -1,0 +1,87 @@
+// Contact law (eqs 3-7, 13) against hand calculations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dem/contact_law.hpp"
+
+using fluidbed::contact_force;
+using fluidbed::ContactParams;
+
+namespace {
+ContactParams paper() { return ContactParams{50000.0, 50000.0, 0.15, 0.15, 0.3}; }
+}  // namespace
+
+TEST(ContactLaw, NormalSpringPushesApart) {
+  // delta_n = 1e-5 m at rest: f_n = -kappa_n delta_n = -0.5 N (towards -n, away from j).
+  double dt = 0.0;
+  const auto f = contact_force(paper(), 1e-5, dt, 0.0, 0.0);
+  EXPECT_DOUBLE_EQ(f.fn, -0.5);
+  EXPECT_DOUBLE_EQ(f.ft, 0.0);
+  EXPECT_FALSE(f.sliding);
+}
+
+TEST(ContactLaw, NormalDampingOpposesApproach) {
+  // Approaching at v_n = 2 m/s with delta_n = 1e-5: -0.5 N spring, -0.15 * 2 = -0.3 N dashpot.
+  double dt = 0.0;
+  const auto f = contact_force(paper(), 1e-5, dt, 2.0, 0.0);
+  EXPECT_NEAR(f.fn, -0.8, 1e-15);
+  // Separating at 2 m/s: the dashpot pulls back (+0.3 N), the spring still pushes (-0.5 N).
+  const auto g = contact_force(paper(), 1e-5, dt, -2.0, 0.0);
+  EXPECT_NEAR(g.fn, -0.2, 1e-15);
+}
+
+TEST(ContactLaw, SpringActsInCompressionOnly) {
+  double dt = 0.0;
+  const auto f = contact_force(paper(), -1e-6, dt, 0.0, 0.0);
+  EXPECT_DOUBLE_EQ(f.fn, 0.0);
+}
+
+TEST(ContactLaw, TangentialSpringAndDampingBelowFrictionLimit) {
+  // delta_n = 1e-4 (f_cn = 5 N, limit 1.5 N); delta_t = 1e-5 (f_ct = -0.5 N), v_t = 1 m/s
+  // (dashpot -0.15 N): sticking, f_t = -0.65 N, delta_t unchanged.
+  double dt = 1e-5;
+  const auto f = contact_force(paper(), 1e-4, dt, 0.0, 1.0);
+  EXPECT_FALSE(f.sliding);
+  EXPECT_NEAR(f.ft, -0.65, 1e-15);
+  EXPECT_DOUBLE_EQ(dt, 1e-5);
+}
+
+TEST(ContactLaw, FrictionCapKeepsSignAndHoldsSpringAtLimit) {
+  // delta_n = 1e-5 (f_cn = 0.5 N, limit 0.15 N); delta_t = -4e-5 (f_ct = +2 N > limit): slides.
+  double dt = -4e-5;
+  const auto f = contact_force(paper(), 1e-5, dt, 0.0, -3.0);
+  EXPECT_TRUE(f.sliding);
+  EXPECT_NEAR(f.ft, 0.15, 1e-15);  // the sign of the spring force, no dashpot while sliding
+  EXPECT_NEAR(dt, -0.15 / 50000.0, 1e-20);  // spring held at the Coulomb limit
+  double dt2 = 4e-5;
+  const auto g = contact_force(paper(), 1e-5, dt2, 0.0, 3.0);
+  EXPECT_NEAR(g.ft, -0.15, 1e-15);
+}
+
+TEST(ContactLaw, FrictionlessContactHasNoTangentialSpringForceWhenSliding) {
+  ContactParams p = paper();
+  p.mu = 0.0;
+  double dt = 1e-6;
+  const auto f = contact_force(p, 1e-5, dt, 0.0, 1.0);
+  EXPECT_TRUE(f.sliding);
+  EXPECT_DOUBLE_EQ(f.ft, 0.0);
+  EXPECT_DOUBLE_EQ(dt, 0.0);
+}
+
+TEST(ContactLaw, BackwardProjectedTouchTime) {
+  // Eq 13: j at distance L = 3.9e-3 along x from i, approaching head on at 2 m/s (w = -2 x):
+  // it touched (R = 4e-3) (R - L) / 2 = 5e-5 s ago.
+  const double s = fluidbed::time_since_touch(3.9e-3, 0.0, -2.0, 0.0, 4e-3, 3.9e-3);
+  EXPECT_NEAR(s, 5e-5, 1e-15);
+  // Oblique: p = (0.003, 0.0025), w = (-1, 0). Hand solution of |p - w s| = R:
+  // (0.003 + s)^2 + 0.0025^2 = 0.004^2 -> s = sqrt(0.004^2 - 0.0025^2) - 0.003.
+  const double L = std::hypot(0.003, 0.0025);
+  const double s2 = fluidbed::time_since_touch(0.003, 0.0025, -1.0, 0.0, 0.004, L);
+  EXPECT_NEAR(s2, std::sqrt(0.004 * 0.004 - 0.0025 * 0.0025) - 0.003, 1e-15);
+  // No relative motion: placed touching, no history to project.
+  EXPECT_DOUBLE_EQ(fluidbed::time_since_touch(0.003, 0.0, 0.0, 0.0, 0.004, 0.003), 0.0);
+  // Wall: 3e-6 m in, approaching at 1.5 m/s: touched 2e-6 s ago.
+  EXPECT_NEAR(fluidbed::time_since_touch_wall(3e-6, 1.5), 2e-6, 1e-18);
+  EXPECT_DOUBLE_EQ(fluidbed::time_since_touch_wall(3e-6, -1.0), 0.0);
+}

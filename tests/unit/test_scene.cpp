@@ -1,0 +1,108 @@
+// Scene files: defaults, overrides, unknown keys, types and physics checks, each error naming
+// its key.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/errors.hpp"
+#include "scene/scene_loader.hpp"
+
+using namespace fluidbed;
+
+namespace {
+
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_scene(text, "test.toml", overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Scene, DefaultsAreThePapers) {
+  const Settings s = parse_scene("", "empty.toml");
+  EXPECT_EQ(s.particles.count, 2400);
+  EXPECT_DOUBLE_EQ(s.particles.diameter, 0.004);
+  EXPECT_DOUBLE_EQ(s.particles.density, 2700.0);
+  EXPECT_DOUBLE_EQ(s.contact.stiffness, 50000.0);
+  EXPECT_DOUBLE_EQ(s.contact.friction, 0.3);
+  EXPECT_DOUBLE_EQ(s.contact.damping, 0.15);
+  EXPECT_DOUBLE_EQ(s.time.dt, 1.5e-5);
+  EXPECT_DOUBLE_EQ(s.domain.width, 0.15);
+  EXPECT_DOUBLE_EQ(s.domain.height, 0.9);
+  EXPECT_DOUBLE_EQ(s.domain.thickness, 0.004);
+  EXPECT_EQ(s.time.integrator, "newmark");
+  EXPECT_EQ(s.contact.displacement, "incremental");
+}
+
+TEST(Scene, ReadsValuesAndOverrides) {
+  const Settings s = parse_scene("[particles]\ndensity = 1350\n[time]\ndt = 3e-5\n", "t.toml",
+                                 {"contact.damping=0", "time.integrator=velocity_verlet",
+                                  "particles.density=1000.5", "domain.top_wall=true"});
+  EXPECT_DOUBLE_EQ(s.particles.density, 1000.5);  // the override wins over the file
+  EXPECT_DOUBLE_EQ(s.time.dt, 3e-5);
+  EXPECT_DOUBLE_EQ(s.contact.damping, 0.0);
+  EXPECT_EQ(s.time.integrator, "velocity_verlet");
+  EXPECT_TRUE(s.domain.top_wall);
+}
+
+TEST(Scene, RefusesUnknownKeysAndSections) {
+  EXPECT_NE(error_of("[particles]\ndiametre = 0.004\n").find("particles.diametre"), std::string::npos);
+  EXPECT_NE(error_of("[partcles]\ncount = 3\n").find("[partcles]"), std::string::npos);
+  EXPECT_NE(error_of("", {"contact.stifness=3"}).find("contact.stifness"), std::string::npos);
+  EXPECT_NE(error_of("", {"nonsense"}).find("section.key=value"), std::string::npos);
+}
+
+TEST(Scene, RefusesWrongTypes) {
+  EXPECT_NE(error_of("[particles]\ncount = \"many\"\n").find("particles.count"), std::string::npos);
+  EXPECT_NE(error_of("[particles]\ncount = 2.5\n").find("particles.count"), std::string::npos);
+  EXPECT_NE(error_of("[time]\ndt = true\n").find("time.dt"), std::string::npos);
+  EXPECT_NE(error_of("[time\n").find("test.toml:1"), std::string::npos);  // syntax: line named
+}
+
+TEST(Scene, RefusesImpossibleValues) {
+  EXPECT_NE(error_of("[particles]\ndiameter = -0.004\n").find("particles.diameter"), std::string::npos);
+  EXPECT_NE(error_of("[particles]\ndensity = 0\n").find("particles.density"), std::string::npos);
+  EXPECT_NE(error_of("[time]\ndt = 0\n").find("time.dt"), std::string::npos);
+  EXPECT_NE(error_of("[contact]\nfriction = -1\n").find("contact.friction"), std::string::npos);
+  EXPECT_NE(error_of("[time]\nintegrator = \"rk4\"\n").find("time.integrator"), std::string::npos);
+  EXPECT_NE(error_of("[domain]\nthickness = 0.003\n").find("domain.thickness"), std::string::npos);
+  // 10,000 spheres of 4 mm cannot fit in 0.15 m x 0.9 m (8,325 lattice cells).
+  const std::string many = error_of("[particles]\ncount = 10000\n");
+  EXPECT_NE(many.find("particles.count"), std::string::npos);
+  EXPECT_NE(many.find("fit"), std::string::npos);
+  EXPECT_NE(error_of("[particles]\nplacement = \"single\"\ncount = 1\nx = 0.001\n").find("particles.x"),
+            std::string::npos);
+}
+
+TEST(Scene, ResolvedSceneReadsBackIdentically) {
+  const Settings s = parse_scene("[particles]\ncount = 100\nseed = 42\n", "t.toml",
+                                 {"scene.name=roundtrip", "contact.stiffness=800"});
+  const std::string text = to_toml(s);
+  const Settings back = parse_scene(text, "resolved.toml");
+  EXPECT_EQ(to_toml(back), text);
+  EXPECT_EQ(back.particles.seed, 42u);
+  EXPECT_DOUBLE_EQ(back.contact.stiffness, 800.0);
+}
+
+TEST(Scene, ShippedScenesAreValid) {
+  int found = 0;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(FLUIDBED_ASSET_DIR) + "/scenes")) {
+    if (e.path().extension() != ".toml") continue;
+    ++found;
+    EXPECT_NO_THROW(load_scene(e.path().string())) << e.path();
+  }
+  EXPECT_GE(found, 2);
+}
+
+TEST(Scene, MissingFileNamesThePath) {
+  try {
+    load_scene("/nonexistent/scene.toml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.toml"), std::string::npos);
+  }
+}
