@@ -32,6 +32,18 @@ int main(int argc, char** argv) {
   add_scene_options(bench, bench_args, false);
   bench->add_option("--out", bench_args.out, "folder for bench.json (default out/bench)");
 
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    std::string names;
+    for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      known = known || sub->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::cerr << "fluidbed: unknown command '" << argv[1] << "' (known: " << names << ")\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -30,7 +30,9 @@ TEST(Cli, BadInputExitsWithStatusTwo) {
   expect_refused("run " + (dir / "negative.toml").string() + " --out " + out, "particles.diameter", "b");
   expect_refused("run " + (dir / "crowded.toml").string() + " --out " + out, "particles.count", "c");
   expect_refused("run " + (dir / "missing.toml").string() + " --out " + out, "missing.toml", "d");
-  expect_refused("run " + (dir / "unknown.toml").string() + " --set particles.count=x", "particles.count", "e");
+  write_file(dir / "fine.toml", "[particles]\ncount = 10\n");
+  expect_refused("run " + (dir / "fine.toml").string() + " --out " + out + " --set particles.count=x",
+                 "particles.count", "e");
   expect_refused("frobnicate", "frobnicate", "f");
   EXPECT_FALSE(std::filesystem::exists(dir / "o" / "summary.json"));
 }
