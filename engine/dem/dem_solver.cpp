@@ -20,6 +20,7 @@ DemSolver::DemSolver(const Settings& s, Particles particles)
     : walls_(slab_walls(s.domain)),
       integrator_(parse_integrator(s.time.integrator)),
       incremental_(s.contact.displacement == "incremental"),
+      frozen_(s.particles.frozen),
       dt_(s.time.dt),
       gravity_(s.physics.gravity),
       width_(s.domain.width),
@@ -217,6 +218,14 @@ void DemSolver::step() {
   Particles& P = state_.particles;
   const std::size_t n = P.size();
   const double h = dt_;
+  if (frozen_) {  // a fixed bed: the clock runs, nothing moves
+    std::fill(P.vx.begin(), P.vx.end(), 0.0);
+    std::fill(P.vy.begin(), P.vy.end(), 0.0);
+    std::fill(P.w.begin(), P.w.end(), 0.0);
+    state_.time = static_cast<double>(++state_.step) * dt_;
+    diag_.kinetic_energy = 0.0;
+    return;
+  }
   switch (integrator_) {
     case Integrator::Newmark: {
       // Eqs 24-28 with alpha = 1/2, beta = 1/4: predict, evaluate forces at the prediction,

@@ -74,6 +74,7 @@ class DemSolver {
   ContactParams params_;
   Integrator integrator_;
   bool incremental_;
+  bool frozen_;
   double dt_;
   double gravity_;
   double width_, height_;

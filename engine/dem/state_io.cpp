@@ -3,6 +3,8 @@
 #include <cstring>
 #include <fstream>
 
+#include "core/atomic_file.hpp"
+#include "core/binary_io.hpp"
 #include "core/errors.hpp"
 #include "dem/dem_solver.hpp"
 
@@ -11,36 +13,6 @@ namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'B', 'S', 'T', 'A', 'T', 'E'};
 constexpr std::uint32_t kVersion = 1;
-
-template <class T>
-void put(std::ostream& out, const T& v) {
-  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-template <class T>
-void put_vec(std::ostream& out, const std::vector<T>& v) {
-  put(out, static_cast<std::uint64_t>(v.size()));
-  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
-}
-
-struct Source {
-  std::istream& in;
-  const std::string& origin;
-  template <class T>
-  T get() {
-    T v{};
-    in.read(reinterpret_cast<char*>(&v), sizeof(T));
-    if (!in) throw InputError(origin + ": state file is truncated");
-    return v;
-  }
-  template <class T>
-  void get_vec(std::vector<T>& v, std::uint64_t expected) {
-    const auto n = get<std::uint64_t>();
-    if (n != expected) throw InputError(origin + ": state file is inconsistent (array sizes)");
-    v.resize(n);
-    in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
-    if (!in) throw InputError(origin + ": state file is truncated");
-  }
-};
 
 }  // namespace
 
@@ -67,7 +39,7 @@ void write_state(std::ostream& out, const DemState& s) {
 }
 
 DemState read_state(std::istream& in, const std::string& origin) {
-  Source src{in, origin};
+  BinarySource src(in, origin);
   char magic[sizeof kMagic];
   in.read(magic, sizeof magic);
   if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
@@ -75,8 +47,9 @@ DemState read_state(std::istream& in, const std::string& origin) {
   if (src.get<std::uint32_t>() != kVersion)
     throw InputError(origin + ": state file version is not supported");
   DemState s;
-  const auto n = src.get<std::uint64_t>();
-  if (n == 0 || n > (1ULL << 32)) throw InputError(origin + ": state file is inconsistent (count)");
+  const auto count = src.get<std::uint64_t>();
+  if (count == 0 || count > (1ULL << 31)) src.fail("inconsistent (count)");
+  const auto n = static_cast<std::int64_t>(count);
   if (src.get<std::int32_t>() != PairHistory::kSlots)
     throw InputError(origin + ": state file has a different contact-slot layout");
   const auto walls = src.get<std::int32_t>();
@@ -95,12 +68,12 @@ DemState read_state(std::istream& in, const std::string& origin) {
   src.get_vec(s.walls.active, n * walls);
   src.get_vec(s.walls.dn, n * walls);
   src.get_vec(s.walls.dt, n * walls);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < count; ++i) {
     if (s.pairs.count[i] > PairHistory::kSlots)
       throw InputError(origin + ": state file is inconsistent (contact count)");
     for (int k = 0; k < s.pairs.count[i]; ++k) {
       const auto j = s.pairs.partner[i * PairHistory::kSlots + k];
-      if (j <= static_cast<std::int64_t>(i) || j >= static_cast<std::int64_t>(n))
+      if (j <= static_cast<std::int32_t>(i) || j >= n)
         throw InputError(origin + ": state file is inconsistent (contact partner)");
     }
   }
@@ -108,15 +81,7 @@ DemState read_state(std::istream& in, const std::string& origin) {
 }
 
 void save_state_file(const std::string& path, const DemState& s) {
-  const std::string tmp = path + ".partial";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError("cannot write state file " + path);
-    write_state(out, s);
-    if (!out) throw InputError("cannot write state file " + path);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw InputError("cannot write state file " + path);
+  write_file_atomically(path, [&](std::ostream& out) { write_state(out, s); });
 }
 
 DemState load_state_file(const std::string& path) {

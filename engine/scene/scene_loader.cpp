@@ -139,6 +139,9 @@ Settings convert(const toml::table& root, const std::string& origin) {
     }
     visit_fields(section, Reader{*table, std::string(name), origin});
   });
+  // A [gas] section switches the gas on unless it says enabled = false.
+  if (const toml::table* gas = root["gas"].as_table(); gas && !gas->contains("enabled"))
+    s.gas.enabled = true;
   for (const auto& [k, v] : root) {
     if (std::find(known_sections.begin(), known_sections.end(), k.str()) == known_sections.end())
       throw InputError(origin + ": unknown section [" + std::string(k.str()) +

@@ -28,7 +28,9 @@ struct ParticleSettings {
   double density = 2700.0;   // kg/m^3
   // "lattice": the paper's packing start (cells of one diameter, alternate rows shifted by a
   // radius, particles in randomly chosen cells); "single": one particle at (x, y);
-  // "state": positions, velocities, spins and contact history from state_file.
+  // "state": positions, velocities, spins and contact history from state_file;
+  // "packed": the paper's packing of this scene's particles (lattice start, gas at rest, falling
+  // for packing_time), generated once and cached.
   std::string placement = "lattice";
   std::uint64_t seed = 1;    // random placement
   double fill_height = 0.0;  // m, lattice cells only below this height (0: the whole domain)
@@ -38,6 +40,8 @@ struct ParticleSettings {
   double vy = 0.0;           // m/s
   double spin = 0.0;         // rad/s about z
   std::string state_file;    // "state" placement; relative paths are relative to the scene file
+  double packing_time = 0.8; // s, "packed" placement: how long the lattice start falls
+  bool frozen = false;       // held in place (a fixed bed): the gas flows through, nothing moves
 };
 
 struct ContactSettings {
@@ -62,6 +66,33 @@ struct PhysicsSettings {
   double gravity = 9.81;  // m/s^2, along -y
 };
 
+// The gas (section 3). A scene without a [gas] section has none; with one, `enabled` defaults
+// to true.
+struct GasSettings {
+  bool enabled = false;
+  double density = 1.205;     // kg/m^3, air
+  double viscosity = 1.8e-5;  // Pa s
+  int cells_x = 15;           // the paper: dx = 10 mm
+  int cells_y = 45;           // the paper: dy = 20 mm
+  double tolerance = 1e-6;    // SIMPLE: mass residual relative to the inflow
+  int max_iterations = 50;    // SIMPLE iterations per gas step
+};
+
+struct InletSettings {
+  // "jet": a plug through a slot at the centre of the bottom (the paper); "uniform": a
+  // distributor over the whole bottom; "none": a closed bottom (gas at rest).
+  std::string kind = "jet";
+  double superficial_velocity = 2.8;  // m/s, mean over the bottom (jet: U width / jet_width)
+  double jet_width = 0.01;            // m
+};
+
+struct CouplingSettings {
+  // Model A (Feng & Yu 2004; model.md 2.1): particles feel drag and -V grad p. false: the paper's
+  // printed form, drag alone.
+  bool pressure_gradient_force = true;
+  int particle_steps_per_gas_step = 1;  // the paper: 1
+};
+
 struct DiagnosticsSettings {
   double output_interval = 1e-3;   // s, one timeseries row per interval
   double averaging_start = 1.0;    // s, tau_1 of eq 30; also where "after start-up" begins
@@ -76,6 +107,9 @@ struct Settings {
   ContactSettings contact;
   TimeSettings time;
   PhysicsSettings physics;
+  GasSettings gas;
+  InletSettings inlet;
+  CouplingSettings coupling;
   DiagnosticsSettings diagnostics;
   std::string source_dir = ".";  // folder of the scene file, for relative paths (not a TOML key)
 };
@@ -108,6 +142,8 @@ void visit_fields(ParticleSettings& s, V&& v) {
   v("vy", s.vy, "m/s");
   v("spin", s.spin, "rad/s");
   v("state_file", s.state_file, "");
+  v("packing_time", s.packing_time, "s");
+  v("frozen", s.frozen, "");
 }
 template <class V>
 void visit_fields(ContactSettings& s, V&& v) {
@@ -136,6 +172,28 @@ void visit_fields(DiagnosticsSettings& s, V&& v) {
   v("save_state", s.save_state, "");
 }
 
+template <class V>
+void visit_fields(GasSettings& s, V&& v) {
+  v("enabled", s.enabled, "");
+  v("density", s.density, "kg/m^3");
+  v("viscosity", s.viscosity, "Pa s");
+  v("cells_x", s.cells_x, "");
+  v("cells_y", s.cells_y, "");
+  v("tolerance", s.tolerance, "");
+  v("max_iterations", s.max_iterations, "");
+}
+template <class V>
+void visit_fields(InletSettings& s, V&& v) {
+  v("kind", s.kind, "");
+  v("superficial_velocity", s.superficial_velocity, "m/s");
+  v("jet_width", s.jet_width, "m");
+}
+template <class V>
+void visit_fields(CouplingSettings& s, V&& v) {
+  v("pressure_gradient_force", s.pressure_gradient_force, "");
+  v("particle_steps_per_gas_step", s.particle_steps_per_gas_step, "");
+}
+
 // v(section_name, section_struct) for every section.
 template <class V>
 void visit_sections(Settings& s, V&& v) {
@@ -145,6 +203,9 @@ void visit_sections(Settings& s, V&& v) {
   v("contact", s.contact);
   v("time", s.time);
   v("physics", s.physics);
+  v("gas", s.gas);
+  v("inlet", s.inlet);
+  v("coupling", s.coupling);
   v("diagnostics", s.diagnostics);
 }
 

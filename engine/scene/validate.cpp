@@ -41,7 +41,8 @@ void validate(const Settings& s) {
   if (p.count < 1) refuse("particles.count", "must be at least 1");
   positive("particles.diameter", p.diameter);
   positive("particles.density", p.density);
-  one_of("particles.placement", p.placement, {"lattice", "single", "state"});
+  one_of("particles.placement", p.placement, {"lattice", "single", "state", "packed"});
+  positive("particles.packing_time", p.packing_time);
   if (p.diameter > d.width || p.diameter > d.height)
     refuse("particles.diameter", "is larger than the domain");
   // The slab must hold one layer: spheres move in x-y between the front and back walls.
@@ -49,7 +50,7 @@ void validate(const Settings& s) {
     refuse("domain.thickness", "must be at least particles.diameter (one layer of spheres)");
   non_negative("particles.fill_height", p.fill_height);
   if (p.fill_height > d.height) refuse("particles.fill_height", "is above domain.height");
-  if (p.placement == "lattice") {
+  if (p.placement == "lattice" || p.placement == "packed") {
     const double top = p.fill_height > 0.0 ? p.fill_height : d.height;
     const auto cells = lattice_sites(d.width, top, p.diameter).size();
     if (static_cast<std::size_t>(p.count) > cells)
@@ -78,6 +79,27 @@ void validate(const Settings& s) {
   non_negative("time.end", s.time.end);
   one_of("time.integrator", s.time.integrator, {"newmark", "velocity_verlet", "symplectic_euler"});
   if (!std::isfinite(s.physics.gravity)) refuse("physics.gravity", "must be finite");
+
+  const auto& g = s.gas;
+  positive("gas.density", g.density);
+  positive("gas.viscosity", g.viscosity);
+  if (g.cells_x < 3) refuse("gas.cells_x", "must be at least 3");
+  if (g.cells_y < 3) refuse("gas.cells_y", "must be at least 3");
+  positive("gas.tolerance", g.tolerance);
+  if (g.max_iterations < 1) refuse("gas.max_iterations", "must be at least 1");
+  if (g.enabled) {
+    // Porosity counts each sphere in the cells it straddles; the exact split assumes a sphere
+    // is cut by at most one grid line each way.
+    if (d.width / g.cells_x < p.diameter || d.height / g.cells_y < p.diameter)
+      refuse("gas.cells_x", "makes gas cells smaller than a particle (cells must be at least one "
+                            "particles.diameter wide and high)");
+  }
+  one_of("inlet.kind", s.inlet.kind, {"jet", "uniform", "none"});
+  non_negative("inlet.superficial_velocity", s.inlet.superficial_velocity);
+  positive("inlet.jet_width", s.inlet.jet_width);
+  if (s.inlet.jet_width > d.width) refuse("inlet.jet_width", "is wider than domain.width");
+  if (s.coupling.particle_steps_per_gas_step < 1)
+    refuse("coupling.particle_steps_per_gas_step", "must be at least 1");
 
   positive("diagnostics.output_interval", s.diagnostics.output_interval);
   non_negative("diagnostics.averaging_start", s.diagnostics.averaging_start);

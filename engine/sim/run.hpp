@@ -17,6 +17,12 @@ struct TimeseriesRow {
   double kinetic_energy = 0.0;          // J
   int pair_contacts = 0;
   int wall_contacts = 0;
+  // Gas (zeros without gas): the last gas step's SIMPLE iterations and mass residual, the
+  // largest CFL number over the interval, the total fluid force on the particles (N).
+  int simple_iterations = 0;
+  double mass_residual = 0.0;
+  double max_cfl = 0.0;
+  double fluid_force_y = 0.0;
 };
 
 struct RunOptions {

@@ -1,14 +1,25 @@
 #include "sim/simulation.hpp"
 
+#include <cmath>
+#include <fstream>
+
+#include "core/errors.hpp"
+#include "core/hash.hpp"
+#include "sim/packed_bed.hpp"
 #include "sim/placement.hpp"
+#include "sim/state_file.hpp"
 
 namespace fluidbed {
 namespace {
 
 DemSolver make_dem(const Settings& s) {
-  if (s.particles.placement != "state") return DemSolver(s, place_particles(s));
-  // A saved configuration starts a new experiment: its history is kept, its clock restarts.
-  DemState st = load_scene_state(s);
+  if (s.particles.placement != "state" && s.particles.placement != "packed")
+    return DemSolver(s, place_particles(s));
+  // A saved configuration starts a new experiment: its contact history is kept, its clock
+  // restarts, and the gas starts from rest with this scene's inflow.
+  Settings from = s;
+  if (s.particles.placement == "packed") from.particles.state_file = packed_bed_state(s);
+  DemState st = load_scene_state(from);
   st.time = 0.0;
   st.step = 0;
   Particles p = st.particles;
@@ -19,12 +30,113 @@ DemSolver make_dem(const Settings& s) {
 
 }  // namespace
 
-Simulation::Simulation(const Settings& s) : settings_(s), dem_(make_dem(s)) {}
+GasGrid gas_grid_for(const Settings& s) {
+  GasGrid g;
+  g.nx = s.gas.cells_x;
+  g.ny = s.gas.cells_y;
+  g.width = s.domain.width;
+  g.height = s.domain.height;
+  g.depth = s.domain.thickness;
+  return g;
+}
 
-void Simulation::step() { dem_.step(); }
+GasParams gas_params_for(const Settings& s) {
+  GasParams p;
+  p.density = s.gas.density;
+  p.viscosity = s.gas.viscosity;
+  p.gravity = s.physics.gravity;
+  p.inlet = s.inlet.kind;
+  p.superficial_velocity = s.inlet.superficial_velocity;
+  p.jet_width = s.inlet.jet_width;
+  p.tolerance = s.gas.tolerance;
+  p.max_iterations = s.gas.max_iterations;
+  // The drag of the lower half of a bottom-row cell acts where the inflow velocity is fixed: it is
+  // carried by the bottom wall's pressure, not moved onto the face above (which would bias the
+  // bottom-row pressure gradient and the bed's pressure drop by 0.75 F dy / eps). The third-law
+  // check counts force_on_gas + force_on_walls.
+  p.wall_force_to_interior = false;
+  return p;
+}
 
-void Simulation::save_state(const std::string& path) const { save_state_file(path, dem_.state()); }
+Simulation::Simulation(const Settings& s) : settings_(s), dem_(make_dem(s)) {
+  if (!s.gas.enabled) return;
+  const GasGrid grid = gas_grid_for(s);
+  gas_ = std::make_unique<GasSolver>(grid, gas_params_for(s));
+  coupler_ = std::make_unique<Coupler>(grid, s, particle_count());
+  Particles& p = dem_.particles();
+  gas_->set_porosity(coupler_->compute_porosity(p, time()));
+  coupler_->compute_fluid_forces(p, *gas_);
+  // A fresh start has no carried acceleration beyond gravity: add the gas's share to it.
+  if (s.particles.placement != "state" && s.particles.placement != "packed") {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      p.ax[i] += p.ext_fx[i] * p.inv_mass[i];
+      p.ay[i] += p.ext_fy[i] * p.inv_mass[i];
+    }
+  }
+}
 
-void Simulation::load_state(const std::string& path) { dem_.set_state(load_state_file(path)); }
+void Simulation::set_superficial_velocity(double u) {
+  if (gas_) gas_->set_superficial_velocity(u);
+  settings_.inlet.superficial_velocity = u;
+}
+
+void Simulation::step() {
+  dem_.step();
+  if (!gas_) return;
+  Particles& p = dem_.particles();
+  coupler_->accumulate_drag(p);  // the drag the particles felt in this step
+  if (++since_gas_step_ >= settings_.coupling.particle_steps_per_gas_step) gas_step();
+  coupler_->compute_fluid_forces(p, *gas_);  // for the next step
+}
+
+void Simulation::gas_step() {
+  const double dt = since_gas_step_ * settings_.time.dt;
+  since_gas_step_ = 0;
+  const auto& eps = coupler_->compute_porosity(dem_.particles(), time());
+  CouplingDiagnostics& d = coupling_diag_;
+  coupler_->take_interaction_force(fx_, fy_, d.drag_total_x, d.drag_total_y);
+  d.gas = gas_->step(dt, eps, fx_, fy_);
+  ++d.gas_steps;
+  gas_->force_on_gas(d.gas_force_x, d.gas_force_y);
+  double wx = 0.0, wy = 0.0;
+  gas_->force_on_walls(wx, wy);
+  d.gas_force_x += wx;
+  d.gas_force_y += wy;
+  const double scale = std::hypot(d.drag_total_x, d.drag_total_y);
+  const double miss = std::hypot(d.drag_total_x + d.gas_force_x, d.drag_total_y + d.gas_force_y);
+  d.third_law_error = scale > 0.0 ? miss / scale : miss;
+}
+
+std::uint64_t Simulation::state_hash() const {
+  Fnv1a h;
+  h.value(dem_.state_hash());
+  if (gas_) h.value(gas_->state_hash());
+  return h.digest();
+}
+
+void Simulation::save_state(const std::string& path) const {
+  StateFile f;
+  f.dem = dem_.state();
+  if (gas_) {
+    f.has_gas = true;
+    f.gas = gas_->state();
+    f.since_gas_step = since_gas_step_;
+    coupler_->save(f.coupling);
+  }
+  save_simulation_state(path, f);
+}
+
+void Simulation::load_state(const std::string& path) {
+  StateFile f = load_simulation_state(path);
+  if (f.has_gas != has_gas())
+    throw InputError(path + (f.has_gas ? ": holds a gas state but the scene has no gas"
+                                       : ": holds no gas state but the scene has gas"));
+  dem_.set_state(std::move(f.dem));
+  if (gas_) {
+    gas_->set_state(f.gas);
+    since_gas_step_ = f.since_gas_step;
+    coupler_->restore(f.coupling, particle_count());
+  }
+}
 
 }  // namespace fluidbed

@@ -1,13 +1,30 @@
 #pragma once
-// A scene's model put together: the particles now; the gas and the coupler join here, each
-// knowing nothing of the other. Owns the state; one call advances it by one time step.
+// A scene's model put together: the particle solver, the gas solver and the coupler between
+// them, each knowing nothing of the others. Owns the state; one call advances it by one
+// particle time step (and the gas every coupling.particle_steps_per_gas_step steps).
 #include <cstdint>
+#include <memory>
 #include <string>
 
+#include "cfd/gas_solver.hpp"
+#include "coupling/coupler.hpp"
 #include "dem/dem_solver.hpp"
 #include "scene/settings.hpp"
 
 namespace fluidbed {
+
+// What the last gas step reported, and the coupling checks.
+struct CouplingDiagnostics {
+  GasStepReport gas;
+  int gas_steps = 0;
+  // |sum of drag on the particles + total force applied to the gas| over the last gas step,
+  // relative to the sum of |drag| (Newton's third law, eq 21; round-off only).
+  double third_law_error = 0.0;
+  double drag_total_x = 0.0, drag_total_y = 0.0;  // N, on the particles
+  // N, applied to the gas: its momentum equations plus the share its fixed-velocity boundary
+  // faces carry into the wall pressure.
+  double gas_force_x = 0.0, gas_force_y = 0.0;
+};
 
 class Simulation {
  public:
@@ -22,17 +39,33 @@ class Simulation {
   std::int64_t steps() const { return dem_.state().step; }
   std::size_t particle_count() const { return dem_.particles().size(); }
 
-  bool has_gas() const { return false; }
-  double pressure_drop() const { return 0.0; }  // Pa, bottom to top on the symmetry line
+  bool has_gas() const { return gas_ != nullptr; }
+  const GasSolver* gas() const { return gas_.get(); }
+  const Coupler* coupler() const { return coupler_.get(); }
+  const CouplingDiagnostics& coupling_diagnostics() const { return coupling_diag_; }
+  // Pa, bottom to top on the symmetry line (0 without gas).
+  double pressure_drop() const { return gas_ ? gas_->pressure_drop() : 0.0; }
+  // The superficial gas velocity from the next gas step on (m/s).
+  void set_superficial_velocity(double u);
 
-  std::uint64_t state_hash() const { return dem_.state_hash(); }
+  std::uint64_t state_hash() const;
   void save_state(const std::string& path) const;
-  // Bit-exact restart: replaces the whole state, time included.
+  // Bit-exact restart: replaces the whole state (particles, gas, coupling), time included.
   void load_state(const std::string& path);
 
  private:
+  void gas_step();
+
   Settings settings_;
   DemSolver dem_;
+  std::unique_ptr<GasSolver> gas_;
+  std::unique_ptr<Coupler> coupler_;
+  int since_gas_step_ = 0;
+  std::vector<double> fx_, fy_;  // scratch: F per cell
+  CouplingDiagnostics coupling_diag_;
 };
+
+GasGrid gas_grid_for(const Settings& s);
+GasParams gas_params_for(const Settings& s);
 
 }  // namespace fluidbed

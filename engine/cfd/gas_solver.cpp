@@ -1,0 +1,807 @@
+#include "cfd/gas_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "core/hash.hpp"
+
+namespace fluidbed {
+namespace {
+
+template <class T>
+std::string field_error(const std::string& field, T value, const std::string& rule) {
+  std::ostringstream os;
+  os << "gas." << field << " = " << value << ": " << rule;
+  return os.str();
+}
+
+// Sum in four interleaved partial sums (short dependency chains; fixed order).
+double sum4(const std::vector<double>& a) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::size_t k = 0;
+  for (; k + 3 < a.size(); k += 4) {
+    s0 += a[k];
+    s1 += a[k + 1];
+    s2 += a[k + 2];
+    s3 += a[k + 3];
+  }
+  for (; k < a.size(); ++k) s0 += a[k];
+  return (s0 + s1) + (s2 + s3);
+}
+
+const GasGrid& checked(const GasGrid& g, const GasParams& p) {
+  validate_gas(g, p);
+  return g;
+}
+
+void check_size(const std::vector<double>& v, std::size_t n, const char* name) {
+  if (v.size() != n)
+    throw InputError(std::string("gas step: ") + name + " has " + std::to_string(v.size()) +
+                     " values, the grid has " + std::to_string(n) + " cells");
+}
+
+}  // namespace
+
+void validate_gas(const GasGrid& g, const GasParams& p) {
+  if (g.nx < 2 || g.ny < 2)
+    throw InputError("gas grid: at least 2 x 2 cells are needed (got " + std::to_string(g.nx) +
+                     " x " + std::to_string(g.ny) + ")");
+  if (!(g.width > 0.0) || !(g.height > 0.0) || !(g.depth > 0.0) || !std::isfinite(g.width) ||
+      !std::isfinite(g.height) || !std::isfinite(g.depth))
+    throw InputError("gas grid: width, height and depth must be positive");
+  if (!(p.density > 0.0) || !std::isfinite(p.density))
+    throw InputError(field_error("density", p.density, "must be > 0 (kg/m^3)"));
+  if (!(p.viscosity >= 0.0) || !std::isfinite(p.viscosity))
+    throw InputError(field_error("viscosity", p.viscosity, "must be >= 0 (Pa s)"));
+  if (!std::isfinite(p.gravity))
+    throw InputError(field_error("gravity", p.gravity, "must be finite (m/s^2)"));
+  if (p.inlet != "jet" && p.inlet != "uniform" && p.inlet != "none")
+    throw InputError("gas.inlet = \"" + p.inlet +
+                     "\": unknown inlet (known: \"jet\", \"uniform\", \"none\")");
+  if (!(p.superficial_velocity >= 0.0) || !std::isfinite(p.superficial_velocity))
+    throw InputError(
+        field_error("superficial_velocity", p.superficial_velocity, "must be >= 0 (m/s)"));
+  if (p.inlet == "jet" && !(p.jet_width > 0.0 && p.jet_width <= g.width)) {
+    std::ostringstream rule;
+    rule << "must be > 0 and no wider than the bed (" << g.width << " m)";
+    throw InputError(field_error("jet_width", p.jet_width, rule.str()));
+  }
+  if (!(p.tolerance > 0.0) || !std::isfinite(p.tolerance))
+    throw InputError(field_error("tolerance", p.tolerance, "must be > 0"));
+  if (p.max_iterations < 1)
+    throw InputError(field_error("max_iterations", p.max_iterations, "must be >= 1"));
+  if (!(p.velocity_relaxation > 0.0 && p.velocity_relaxation <= 1.0))
+    throw InputError(
+        field_error("velocity_relaxation", p.velocity_relaxation, "must be in (0, 1]"));
+  if (!(p.pressure_relaxation > 0.0 && p.pressure_relaxation <= 1.0))
+    throw InputError(
+        field_error("pressure_relaxation", p.pressure_relaxation, "must be in (0, 1]"));
+  if (p.momentum_sweeps < 1)
+    throw InputError(field_error("momentum_sweeps", p.momentum_sweeps, "must be >= 1"));
+  if (!(p.pressure_tolerance > 0.0 && p.pressure_tolerance < 1.0))
+    throw InputError(field_error("pressure_tolerance", p.pressure_tolerance, "must be in (0, 1)"));
+  if (p.pressure_max_iterations < 1)
+    throw InputError(
+        field_error("pressure_max_iterations", p.pressure_max_iterations, "must be >= 1"));
+  if (!(p.preconditioner_refresh >= 0.0) || !std::isfinite(p.preconditioner_refresh))
+    throw InputError(
+        field_error("preconditioner_refresh", p.preconditioner_refresh, "must be >= 0"));
+}
+
+GasSolver::GasSolver(const GasGrid& grid, const GasParams& params)
+    : grid_(checked(grid, params)),
+      params_(params),
+      nx_(grid.nx),
+      ny_(grid.ny),
+      dx_(grid.dx()),
+      dy_(grid.dy()),
+      dz_(grid.depth),
+      vol_(grid.cell_volume()),
+      pressure_(grid.nx, grid.ny) {
+  const std::size_t nu = static_cast<std::size_t>(nx_ + 1) * ny_;
+  const std::size_t nv = static_cast<std::size_t>(nx_) * (ny_ + 1);
+  const std::size_t nc = static_cast<std::size_t>(nx_) * ny_;
+  const std::size_t nk = static_cast<std::size_t>(nx_ + 1) * (ny_ + 1);
+
+  // Inlet: face velocity per unit superficial velocity. A jet slot edge inside a face gives that
+  // face its share of the slot, so the inflow is U W dz whatever the alignment.
+  inlet_profile_.assign(nx_, 0.0);
+  if (params_.inlet == "uniform") {
+    std::fill(inlet_profile_.begin(), inlet_profile_.end(), 1.0);
+  } else if (params_.inlet == "jet") {
+    const double x0 = 0.5 * (grid_.width - params_.jet_width);
+    const double x1 = 0.5 * (grid_.width + params_.jet_width);
+    for (int i = 0; i < nx_; ++i) {
+      double frac = (std::min(x1, (i + 1) * dx_) - std::max(x0, i * dx_)) / dx_;
+      if (frac < 1e-9) frac = 0.0;
+      if (frac > 1.0 - 1e-9) frac = 1.0;
+      inlet_profile_[i] = frac * grid_.width / params_.jet_width;
+    }
+  }
+
+  s_.u.assign(nu, 0.0);
+  s_.v.assign(nv, 0.0);
+  s_.p.assign(nc, 0.0);
+  s_.eps.assign(nc, 1.0);
+  s_.u_previous.assign(nu, 0.0);
+  s_.v_previous.assign(nv, 0.0);
+  s_.superficial_velocity = params_.superficial_velocity;
+  // Hydrostatic (the discrete rest state: p = rho g dy / 2 in the top row, p = 0 at the exit).
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i)
+      s_.p[j * nx_ + i] = params_.density * params_.gravity * (grid_.height - (j + 0.5) * dy_);
+
+  u_old_.assign(nu, 0.0);
+  v_old_.assign(nv, 0.0);
+  eps_old_.assign(nc, 1.0);
+  eu_new_.assign(nu, 1.0);
+  eu_old_.assign(nu, 1.0);
+  ev_new_.assign(nv, 1.0);
+  ev_old_.assign(nv, 1.0);
+  ek_new_.assign(nk, 1.0);
+  ek_old_.assign(nk, 1.0);
+  fu_.assign(nu, 0.0);
+  fv_.assign(nv, 0.0);
+  old_u_.assign(nu, 0.0);
+  old_v_.assign(nv, 0.0);
+  u_ext_.assign(nu, 0.0);
+  v_ext_.assign(nv, 0.0);
+  m_u_.assign(nu, 0.0);
+  m_v_.assign(nv, 0.0);
+  for (Coefficients* c : {&cu_, &cv_}) {
+    const std::size_t n = c == &cu_ ? nu : nv;
+    for (auto* a :
+         {&c->ap, &c->inv_ap, &c->ae, &c->aw, &c->an, &c->as, &c->b0, &c->b, &c->area, &c->d})
+      a->assign(n, 0.0);
+  }
+  res_.assign(nc, 0.0);
+  pcorr_.assign(nc, 0.0);
+  s_.preconditioner_u.assign(nu, 0.0);
+  s_.preconditioner_v.assign(nv, 0.0);
+}
+
+double GasSolver::jet_velocity() const {
+  return params_.inlet == "jet" ? s_.superficial_velocity * grid_.width / params_.jet_width
+                                : s_.superficial_velocity;
+}
+
+void GasSolver::set_superficial_velocity(double u) {
+  if (!(u >= 0.0) || !std::isfinite(u))
+    throw InputError(field_error("superficial_velocity", u, "must be >= 0 (m/s)"));
+  s_.superficial_velocity = u;
+}
+
+void GasSolver::set_porosity(const std::vector<double>& eps) {
+  check_size(eps, s_.eps.size(), "porosity");
+  for (std::size_t c = 0; c < eps.size(); ++c)
+    if (!(eps[c] > 0.0 && eps[c] <= 1.0))
+      throw InputError("gas porosity " + std::to_string(eps[c]) + " outside (0, 1] in cell (" +
+                       std::to_string(c % nx_) + ", " + std::to_string(c / nx_) + ")");
+  s_.eps = eps;
+  faces_current_ = false;
+}
+
+void GasSolver::set_state(const GasState& s) {
+  const std::size_t nu = s_.u.size(), nv = s_.v.size(), nc = s_.p.size();
+  if (s.u.size() != nu || s.v.size() != nv || s.p.size() != nc || s.eps.size() != nc ||
+      s.u_previous.size() != nu || s.v_previous.size() != nv || s.preconditioner_u.size() != nu ||
+      s.preconditioner_v.size() != nv)
+    throw InputError("gas state does not match the gas grid (" + std::to_string(nx_) + " x " +
+                     std::to_string(ny_) + " cells)");
+  s_ = s;
+  faces_current_ = false;
+  pressure_.restore_preconditioner(s_.preconditioner_u, s_.preconditioner_v);
+}
+
+std::uint64_t GasSolver::state_hash() const {
+  Fnv1a h;
+  h.values(s_.u);
+  h.values(s_.v);
+  h.values(s_.p);
+  h.values(s_.eps);
+  h.values(s_.preconditioner_u);
+  h.values(s_.preconditioner_v);
+  h.values(s_.u_previous);
+  h.values(s_.v_previous);
+  h.value(s_.dt_previous);
+  h.value(s_.superficial_velocity);
+  h.value(s_.time);
+  h.value(s_.steps);
+  return h.digest();
+}
+
+void GasSolver::fail(const std::string& what) const {
+  std::ostringstream os;
+  os.precision(6);
+  os << "gas: " << what << " at t = " << s_.time << " s (gas step " << s_.steps + 1 << ")";
+  throw SimulationFailure(os.str());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Geometry of a step: porosity at faces (mean of the two cells; porosity 1 at the inlet, the top
+// cell's at the exit) and at cell corners (mean of the four cells, zero-gradient ghosts).
+
+void GasSolver::face_porosities(const std::vector<double>& eps, std::vector<double>& eu,
+                                std::vector<double>& ev, std::vector<double>& ek) const {
+  const int nx = nx_, ny = ny_;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i <= nx; ++i)
+      eu[j * (nx + 1) + i] =
+          0.5 * (eps[j * nx + std::max(i - 1, 0)] + eps[j * nx + std::min(i, nx - 1)]);
+  for (int i = 0; i < nx; ++i) {
+    ev[i] = 1.0;
+    ev[ny * nx + i] = eps[(ny - 1) * nx + i];
+  }
+  for (int j = 1; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) ev[j * nx + i] = 0.5 * (eps[(j - 1) * nx + i] + eps[j * nx + i]);
+  for (int j = 0; j <= ny; ++j) {
+    const int j0 = std::max(j - 1, 0), j1 = std::min(j, ny - 1);
+    for (int i = 0; i <= nx; ++i) {
+      const int i0 = std::max(i - 1, 0), i1 = std::min(i, nx - 1);
+      ek[j * (nx + 1) + i] =
+          0.25 * (eps[j0 * nx + i0] + eps[j0 * nx + i1] + eps[j1 * nx + i0] + eps[j1 * nx + i1]);
+    }
+  }
+}
+
+void GasSolver::set_inlet(std::vector<double>& v, double superficial) const {
+  for (int i = 0; i < nx_; ++i) v[i] = inlet_profile_[i] * superficial;
+}
+
+double GasSolver::inflow() const {
+  double q = 0.0;
+  for (int i = 0; i < nx_; ++i) q += s_.v[i];
+  return q * dx_ * dz_;
+}
+
+double GasSolver::outflow() const {
+  double q = 0.0;
+  for (int i = 0; i < nx_; ++i) q += s_.eps[(ny_ - 1) * nx_ + i] * s_.v[ny_ * nx_ + i];
+  return q * dx_ * dz_;
+}
+
+void GasSolver::force_on_gas(double& fx, double& fy) const {
+  fx = fy = 0.0;
+  for (double f : fu_) fx -= f;
+  for (double f : fv_) fy -= f;
+}
+
+void GasSolver::force_on_walls(double& fx, double& fy) const {
+  fx = -wall_fx_;
+  fy = -wall_fy_;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Spatial operators. For one momentum component at face f, the convection and viscous terms
+// integrated over the face's control volume (N) are
+//     L(u)_f = ae u_E + aw u_W + an u_N + as u_S - ap u_P + S,
+// with upwind convection through the control-volume faces (mass fluxes interpolated from the
+// continuity faces, so a uniform velocity stays uniform), viscous fluxes eps mu du/dn (with the
+// 4/3 of the normal stress implicit) and S the cross-derivative part of div(eps tau), which holds
+// the other velocity component and is evaluated with the given fields (not implicit).
+
+void GasSolver::mass_fluxes(const double* u, const double* v, const double* eu, const double* ev) {
+  const double mx = params_.density * dy_ * dz_, my = params_.density * dx_ * dz_;
+  for (std::size_t f = 0; f < m_u_.size(); ++f) m_u_[f] = mx * eu[f] * u[f];
+  for (std::size_t f = 0; f < m_v_.size(); ++f) m_v_[f] = my * ev[f] * v[f];
+}
+
+// System = false: writes L(u)_f into out (the old level of Crank-Nicolson).
+// System = true: the momentum system of the step in cu_: Crank-Nicolson (time term, half the old
+// operator, half the new one), F and gravity; the pressure term is added per SIMPLE iteration
+// (iteration_source).
+template <bool System>
+void GasSolver::assemble_u(const double* u, const double* v, const double* eps, const double* ek,
+                           double* out) {
+  const int nx = nx_, ny = ny_, su = nx + 1;
+  const double mu = params_.viscosity;
+  const double gx = 4.0 / 3.0 * mu * dy_ * dz_ / dx_, gy = mu * dx_ * dz_ / dy_, sz = mu * dz_;
+  const double* mfu = m_u_.data();
+  const double* mv = m_v_.data();
+  const double rho_v_dt = params_.density * vol_ / dt_, alpha = params_.velocity_relaxation;
+  const double ax = dy_ * dz_;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 1; i < nx; ++i) {
+      const int f = j * su + i;
+      const int cE = j * nx + i, cW = cE - 1;  // cells east and west of the face (= v faces below)
+      const double Fe = 0.5 * (mfu[f] + mfu[f + 1]), Fw = 0.5 * (mfu[f - 1] + mfu[f]);
+      const double Fn = 0.5 * (mv[cW + nx] + mv[cE + nx]), Fs = 0.5 * (mv[cW] + mv[cE]);
+      const double De = gx * eps[cE], Dw = gx * eps[cW];
+      const double Dn = gy * ek[f + su], Ds = gy * ek[f];
+      double ap = De + Dw + std::max(Fe, 0.0) + std::max(-Fw, 0.0);
+      const double ae = De + std::max(-Fe, 0.0), aw = Dw + std::max(Fw, 0.0);
+      double an = 0.0, as = 0.0;
+      if (j + 1 < ny) {
+        an = Dn + std::max(-Fn, 0.0);
+        ap += Dn + std::max(Fn, 0.0);
+      } else {
+        ap += Fn;  // exit: ghost = u_P (zero gradient), no viscous flux
+      }
+      if (j > 0) {
+        as = Ds + std::max(Fs, 0.0);
+        ap += Ds + std::max(-Fs, 0.0);
+      } else {
+        ap += 2.0 * Ds + std::max(-Fs, 0.0);  // wall: ghost -u_P; inflow brings no u
+      }
+      const double S =
+          sz * (-2.0 / 3.0 * (eps[cE] * (v[cE + nx] - v[cE]) - eps[cW] * (v[cW + nx] - v[cW])) +
+                ek[f + su] * (v[cE + nx] - v[cW + nx]) - ek[f] * (v[cE] - v[cW]));
+      if constexpr (!System) {
+        double val = ae * u[f + 1] + aw * u[f - 1] - ap * u[f] + S;
+        if (j + 1 < ny) val += an * u[f + su];
+        if (j > 0) val += as * u[f - su];
+        out[f] = val;
+      } else {
+        const double a = (rho_v_dt * eu_new_[f] + 0.5 * ap) / alpha;
+        cu_.ap[f] = a;
+        cu_.inv_ap[f] = 1.0 / a;
+        cu_.ae[f] = 0.5 * ae;
+        cu_.aw[f] = 0.5 * aw;
+        cu_.an[f] = 0.5 * an;
+        cu_.as[f] = 0.5 * as;
+        cu_.b0[f] = rho_v_dt * eu_old_[f] * u_old_[f] + 0.5 * (old_u_[f] + S) - fu_[f];
+        cu_.area[f] = eu_new_[f] * ax;  // -eps grad p over the volume = area (p_W - p_E)
+      }
+    }
+  }
+}
+
+template <bool System>
+void GasSolver::assemble_v(const double* u, const double* v, const double* eps, const double* ek,
+                           double* out) {
+  const int nx = nx_, ny = ny_, su = nx + 1;
+  const double mu = params_.viscosity;
+  const double gx = mu * dy_ * dz_ / dx_, gy = 4.0 / 3.0 * mu * dx_ * dz_ / dy_, sz = mu * dz_;
+  const double* mfu = m_u_.data();
+  const double* mv = m_v_.data();
+  const double rho = params_.density, inv_dt = 1.0 / dt_, alpha = params_.velocity_relaxation;
+  const double ay = dx_ * dz_, g = params_.gravity;
+  for (int j = 1; j <= ny; ++j) {
+    const bool top = j == ny;  // the exit face: half control volume below the exit
+    const double vcv = top ? 0.5 * vol_ : vol_;
+    for (int i = 0; i < nx; ++i) {
+      const int f = j * nx + i;
+      const int cS = f - nx;            // cell below the face (the face is the cell above's)
+      const int uS = (j - 1) * su + i;  // u face west of cell cS
+      const int k = j * su + i;         // corner west of the face
+      const double Fs = 0.5 * (mv[f - nx] + mv[f]);
+      double Fe, Fw, De, Dw;
+      if (top) {
+        Fe = 0.5 * mfu[uS + 1];
+        Fw = 0.5 * mfu[uS];
+        De = 0.5 * gx * ek[k + 1];
+        Dw = 0.5 * gx * ek[k];
+      } else {
+        Fe = 0.5 * (mfu[uS + 1] + mfu[uS + 1 + su]);
+        Fw = 0.5 * (mfu[uS] + mfu[uS + su]);
+        De = gx * ek[k + 1];
+        Dw = gx * ek[k];
+      }
+      const double Ds = gy * eps[cS];
+      double ap = Ds + std::max(-Fs, 0.0);
+      const double as = Ds + std::max(Fs, 0.0);
+      double an = 0.0, ae = 0.0, aw = 0.0;
+      if (!top) {
+        const double Fn = 0.5 * (mv[f] + mv[f + nx]);
+        const double Dn = gy * eps[f];
+        an = Dn + std::max(-Fn, 0.0);
+        ap += Dn + std::max(Fn, 0.0);
+      } else {
+        ap += mv[f];  // exit: ghost = v_P (zero gradient), no viscous normal stress
+      }
+      if (i + 1 < nx) {
+        ae = De + std::max(-Fe, 0.0);
+        ap += De + std::max(Fe, 0.0);
+      } else {
+        ap += 2.0 * De;  // wall: ghost -v_P, no flux through it
+      }
+      if (i > 0) {
+        aw = Dw + std::max(Fw, 0.0);
+        ap += Dw + std::max(-Fw, 0.0);
+      } else {
+        ap += 2.0 * Dw;
+      }
+      double S;
+      if (top) {
+        S = sz * (2.0 / 3.0) * eps[cS] * (u[uS + 1] - u[uS]);
+      } else {
+        S = sz *
+            (-2.0 / 3.0 * (eps[f] * (u[uS + su + 1] - u[uS + su]) - eps[cS] * (u[uS + 1] - u[uS])) +
+             ek[k + 1] * (u[uS + su + 1] - u[uS + 1]) - ek[k] * (u[uS + su] - u[uS]));
+      }
+      if constexpr (!System) {
+        double val = as * v[f - nx] - ap * v[f] + S;
+        if (!top) val += an * v[f + nx];
+        if (i + 1 < nx) val += ae * v[f + 1];
+        if (i > 0) val += aw * v[f - 1];
+        out[f] = val;
+      } else {
+        const double t = rho * vcv * inv_dt;
+        const double a = (t * ev_new_[f] + 0.5 * ap) / alpha;
+        cv_.ap[f] = a;
+        cv_.inv_ap[f] = 1.0 / a;
+        cv_.ae[f] = 0.5 * ae;
+        cv_.aw[f] = 0.5 * aw;
+        cv_.an[f] = 0.5 * an;
+        cv_.as[f] = 0.5 * as;
+        cv_.b0[f] = t * ev_old_[f] * v_old_[f] + 0.5 * (old_v_[f] + S) - fv_[f] -
+                    rho * ev_new_[f] * vcv * g;
+        cv_.area[f] = ev_new_[f] * ay;
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// One step.
+
+void GasSolver::prepare_step(double dt, const std::vector<double>& eps,
+                             const std::vector<double>& fx, const std::vector<double>& fy) {
+  // The new level's convecting velocity (all iterations, or the first one with Picard):
+  // extrapolated from the last two steps, second order in time. No history yet: u^n.
+  const double ratio = s_.dt_previous > 0.0 ? dt / s_.dt_previous : 0.0;
+  for (std::size_t f = 0; f < u_ext_.size(); ++f)
+    u_ext_[f] = s_.u[f] + ratio * (s_.u[f] - s_.u_previous[f]);
+  for (std::size_t f = 0; f < v_ext_.size(); ++f)
+    v_ext_[f] = s_.v[f] + ratio * (s_.v[f] - s_.v_previous[f]);
+
+  dt_ = dt;
+  u_old_ = s_.u;
+  v_old_ = s_.v;
+  eps_old_ = s_.eps;
+  s_.eps = eps;
+  if (faces_current_) {  // the last step's new level is this step's old level
+    std::swap(eu_old_, eu_new_);
+    std::swap(ev_old_, ev_new_);
+    std::swap(ek_old_, ek_new_);
+  } else {
+    face_porosities(eps_old_, eu_old_, ev_old_, ek_old_);
+  }
+  face_porosities(s_.eps, eu_new_, ev_new_, ek_new_);
+  faces_current_ = true;
+  set_inlet(s_.v, s_.superficial_velocity);
+  set_inlet(v_ext_, s_.superficial_velocity);
+
+  // F on the faces: half of a cell's F to each of its two faces; the half that falls on a
+  // fixed-velocity face (side walls, bottom) goes to the other face or to the wall.
+  const int nx = nx_, ny = ny_, su = nx + 1;
+  const bool interior = params_.wall_force_to_interior;
+  std::fill(fu_.begin(), fu_.end(), 0.0);
+  std::fill(fv_.begin(), fv_.end(), 0.0);
+  wall_fx_ = wall_fy_ = 0.0;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int c = j * nx + i;
+      const double hx = 0.5 * fx[c] * vol_, hy = 0.5 * fy[c] * vol_;
+      const int w = j * su + i, e = w + 1;
+      if (i > 0)
+        fu_[w] += hx;
+      else if (interior)
+        fu_[e] += hx;
+      else
+        wall_fx_ += hx;
+      if (i + 1 < nx)
+        fu_[e] += hx;
+      else if (interior)
+        fu_[w] += hx;
+      else
+        wall_fx_ += hx;
+      if (j > 0)
+        fv_[c] += hy;
+      else if (interior)
+        fv_[c + nx] += hy;
+      else
+        wall_fy_ += hy;
+      fv_[c + nx] += hy;  // the top face is the solved exit face
+    }
+  }
+
+  // The old level of Crank-Nicolson: the spatial operator at the start of the step.
+  mass_fluxes(u_old_.data(), v_old_.data(), eu_old_.data(), ev_old_.data());
+  assemble_u<false>(u_old_.data(), v_old_.data(), eps_old_.data(), ek_old_.data(), old_u_.data());
+  assemble_v<false>(u_old_.data(), v_old_.data(), eps_old_.data(), ek_old_.data(), old_v_.data());
+
+  // Reference flow for the mass residual.
+  double q_in = 0.0, q_eps = 0.0;
+  for (int i = 0; i < nx; ++i) q_in += s_.v[i] * dx_ * dz_;
+  for (std::size_t c = 0; c < eps.size(); ++c) q_eps += std::abs(eps[c] - eps_old_[c]);
+  q_eps *= vol_ / dt;
+  q_ref_ = std::max({q_in, q_eps, 1e-3 * grid_.width * dz_});
+}
+
+// The new level's convection and cross-viscous terms: at the velocity extrapolated from the last
+// two steps (first iteration, and all of them unless params.picard), else at the latest iterate.
+void GasSolver::momentum_system(bool first_iteration) {
+  if (!first_iteration && !params_.picard) return;
+  const double* u = first_iteration ? u_ext_.data() : s_.u.data();
+  const double* v = first_iteration ? v_ext_.data() : s_.v.data();
+  mass_fluxes(u, v, eu_new_.data(), ev_new_.data());
+  assemble_u<true>(u, v, s_.eps.data(), ek_new_.data(), nullptr);
+  assemble_v<true>(u, v, s_.eps.data(), ek_new_.data(), nullptr);
+}
+
+// b = b0 + the pressure force at the current pressure + the under-relaxation term.
+void GasSolver::iteration_source() {
+  const int nx = nx_, ny = ny_, su = nx + 1;
+  const double r = 1.0 - params_.velocity_relaxation;
+  const double* p = s_.p.data();
+  for (int j = 0; j < ny; ++j)
+    for (int i = 1; i < nx; ++i) {
+      const int f = j * su + i, c = j * nx + i;
+      cu_.b[f] = cu_.b0[f] + cu_.area[f] * (p[c - 1] - p[c]) + r * cu_.ap[f] * s_.u[f];
+    }
+  for (int j = 1; j <= ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int f = j * nx + i;
+      const double p_above = j < ny ? p[f] : 0.0;  // exit pressure 0
+      cv_.b[f] = cv_.b0[f] + cv_.area[f] * (p[f - nx] - p_above) + r * cv_.ap[f] * s_.v[f];
+    }
+}
+
+// Gauss-Seidel sweeps on the interior faces, alternately forward and backward; wall faces stay
+// 0. The neighbour updated just before (west going forward, east going back) is added last, so
+// that consecutive faces overlap in the processor.
+void GasSolver::sweep_u(int sweeps) {
+  const int nx = nx_, ny = ny_, su = nx + 1;
+  double* u = s_.u.data();
+  const Coefficients& c = cu_;
+  auto others = [&](int f, int j) {
+    double s = c.b[f];
+    if (j + 1 < ny) s += c.an[f] * u[f + su];
+    if (j > 0) s += c.as[f] * u[f - su];
+    return s;
+  };
+  for (int k = 0; k < sweeps; ++k) {
+    if (k % 2 == 0) {
+      for (int j = 0; j < ny; ++j)
+        for (int i = 1; i < nx; ++i) {
+          const int f = j * su + i;
+          const double s = others(f, j) + c.ae[f] * u[f + 1];
+          u[f] = (s + c.aw[f] * u[f - 1]) * c.inv_ap[f];
+        }
+    } else {
+      for (int j = ny - 1; j >= 0; --j)
+        for (int i = nx - 1; i >= 1; --i) {
+          const int f = j * su + i;
+          const double s = others(f, j) + c.aw[f] * u[f - 1];
+          u[f] = (s + c.ae[f] * u[f + 1]) * c.inv_ap[f];
+        }
+    }
+  }
+}
+
+void GasSolver::sweep_v(int sweeps) {
+  const int nx = nx_, ny = ny_;
+  double* v = s_.v.data();
+  const Coefficients& c = cv_;
+  auto others = [&](int f, int j) {
+    double s = c.b[f] + c.as[f] * v[f - nx];
+    if (j < ny) s += c.an[f] * v[f + nx];
+    return s;
+  };
+  for (int k = 0; k < sweeps; ++k) {
+    if (k % 2 == 0) {
+      for (int j = 1; j <= ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          const int f = j * nx + i;
+          double s = others(f, j);
+          if (i + 1 < nx) s += c.ae[f] * v[f + 1];
+          if (i > 0) s += c.aw[f] * v[f - 1];
+          v[f] = s * c.inv_ap[f];
+        }
+    } else {
+      for (int j = ny; j >= 1; --j)
+        for (int i = nx - 1; i >= 0; --i) {
+          const int f = j * nx + i;
+          double s = others(f, j);
+          if (i > 0) s += c.aw[f] * v[f - 1];
+          if (i + 1 < nx) s += c.ae[f] * v[f + 1];
+          v[f] = s * c.inv_ap[f];
+        }
+    }
+  }
+}
+
+// Continuity (18) over each cell, m^3/s: d(eps)/dt dV plus the net outflow.
+double GasSolver::continuity_residual() {
+  const int nx = nx_, ny = ny_, su = nx + 1;
+  const double ax = dy_ * dz_, ay = dx_ * dz_, rate = vol_ / dt_;
+  const double* u = s_.u.data();
+  const double* v = s_.v.data();
+  double sum = 0.0;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int c = j * nx + i, f = j * su + i;
+      const double r = (s_.eps[c] - eps_old_[c]) * rate +
+                       (eu_new_[f + 1] * u[f + 1] - eu_new_[f] * u[f]) * ax +
+                       (ev_new_[c + nx] * v[c + nx] - ev_new_[c] * v[c]) * ay;
+      res_[c] = -r;  // right-hand side of the pressure-correction equation
+      sum += std::abs(r);
+    }
+  }
+  return sum;
+}
+
+// Pressure-correction equation (its face coefficients from the first iteration's momentum
+// diagonal, kept for the step), then the velocity and pressure corrections.
+void GasSolver::correct(bool first_iteration, GasStepReport& rep) {
+  const int nx = nx_, ny = ny_, su = nx + 1;
+  if (first_iteration) {
+    std::vector<double>& pu = pressure_.coefficients_u();
+    std::vector<double>& pv = pressure_.coefficients_v();
+    for (int j = 0; j < ny; ++j)
+      for (int i = 1; i < nx; ++i) {
+        const int f = j * su + i;
+        cu_.d[f] = cu_.area[f] * cu_.inv_ap[f];
+        pu[f] = cu_.area[f] * cu_.d[f];
+      }
+    for (int j = 1; j <= ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int f = j * nx + i;
+        cv_.d[f] = cv_.area[f] * cv_.inv_ap[f];
+        pv[f] = cv_.area[f] * cv_.d[f];
+      }
+    // A NaN from the momentum equations would otherwise first show as a broken matrix.
+    if (!std::isfinite(sum4(pu) + sum4(pv))) report_non_finite("in the momentum equations");
+    if (pressure_.update_preconditioner(params_.preconditioner_refresh)) {
+      rep.preconditioner_rebuilt = true;
+      s_.preconditioner_u = pressure_.factored_u();
+      s_.preconditioner_v = pressure_.factored_v();
+    }
+  }
+  // Solve to the relative tolerance, or until the mass error left is far below the SIMPLE one.
+  const double floor = 1e-3 * params_.tolerance * q_ref_;
+  const PressureSolveReport pr =
+      pressure_.solve(res_.data(), pcorr_.data(), params_.pressure_tolerance, floor,
+                      params_.pressure_max_iterations);
+  rep.pressure_iterations_total += pr.iterations;
+  rep.pressure_residual = std::max(rep.pressure_residual, pr.relative_residual);
+
+  const double* pc = pcorr_.data();
+  double* u = s_.u.data();
+  double* v = s_.v.data();
+  for (int j = 0; j < ny; ++j)
+    for (int i = 1; i < nx; ++i) {
+      const int f = j * su + i, c = j * nx + i;
+      u[f] += cu_.d[f] * (pc[c - 1] - pc[c]);
+    }
+  for (int j = 1; j <= ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int f = j * nx + i;
+      v[f] += cv_.d[f] * (pc[f - nx] - (j < ny ? pc[f] : 0.0));
+    }
+  const double ap = params_.pressure_relaxation;
+  for (std::size_t c = 0; c < s_.p.size(); ++c) s_.p[c] += ap * pc[c];
+  // A NaN or an overflow anywhere shows in a sum.
+  if (!std::isfinite(sum4(s_.u) + sum4(s_.v) + sum4(s_.p)))
+    report_non_finite("after a SIMPLE iteration");
+}
+
+void GasSolver::report_non_finite(const char* what) const {
+  const int nx = nx_;
+  for (std::size_t f = 0; f < s_.u.size(); ++f)
+    if (!std::isfinite(s_.u[f]))
+      fail(std::string("x-velocity is not finite ") + what + " on the face west of cell (" +
+           std::to_string(f % (nx + 1)) + ", " + std::to_string(f / (nx + 1)) + ")");
+  for (std::size_t f = 0; f < s_.v.size(); ++f)
+    if (!std::isfinite(s_.v[f]))
+      fail(std::string("y-velocity is not finite ") + what + " on the face below cell (" +
+           std::to_string(f % nx) + ", " + std::to_string(f / nx) + ")");
+  for (std::size_t c = 0; c < s_.p.size(); ++c)
+    if (!std::isfinite(s_.p[c]))
+      fail(std::string("pressure is not finite ") + what + " in cell (" + std::to_string(c % nx) +
+           ", " + std::to_string(c / nx) + ")");
+  fail(std::string("a value overflowed ") + what);
+}
+
+double GasSolver::max_cfl(double dt, int& face, bool& is_u) const {
+  double umax = 0.0, vmax = 0.0;
+  int fu = 0, fv = 0;
+  for (std::size_t f = 0; f < s_.u.size(); ++f)
+    if (std::abs(s_.u[f]) > umax) {
+      umax = std::abs(s_.u[f]);
+      fu = static_cast<int>(f);
+    }
+  for (std::size_t f = 0; f < s_.v.size(); ++f)
+    if (std::abs(s_.v[f]) > vmax) {
+      vmax = std::abs(s_.v[f]);
+      fv = static_cast<int>(f);
+    }
+  is_u = umax > vmax;
+  face = is_u ? fu : fv;
+  return std::max(umax, vmax) * dt / std::min(dx_, dy_);
+}
+
+GasStepReport GasSolver::step(double dt, const std::vector<double>& eps,
+                              const std::vector<double>& fx, const std::vector<double>& fy) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw InputError("gas step: dt = " + std::to_string(dt) + " s must be > 0");
+  const std::size_t nc = s_.p.size();
+  check_size(eps, nc, "porosity");
+  check_size(fx, nc, "fx");
+  check_size(fy, nc, "fy");
+  for (std::size_t c = 0; c < nc; ++c) {
+    if (!(eps[c] > 0.0 && eps[c] <= 1.0))
+      fail("porosity " + std::to_string(eps[c]) + " outside (0, 1] in cell (" +
+           std::to_string(c % nx_) + ", " + std::to_string(c / nx_) + ")");
+    if (!std::isfinite(fx[c]) || !std::isfinite(fy[c]))
+      fail("interaction force F is not finite in cell (" + std::to_string(c % nx_) + ", " +
+           std::to_string(c / nx_) + ")");
+  }
+
+  prepare_step(dt, eps, fx, fy);
+  GasStepReport rep;
+  const double tol = params_.tolerance;
+  for (int it = 0; it < params_.max_iterations; ++it) {
+    const bool first = it == 0;
+    momentum_system(first);
+    iteration_source();
+    sweep_u(params_.momentum_sweeps);
+    sweep_v(params_.momentum_sweeps);
+    rep.mass_residual = continuity_residual() / q_ref_;
+    correct(first, rep);
+    rep.simple_iterations = it + 1;
+    if (rep.mass_residual < tol) {
+      rep.converged = true;
+      break;
+    }
+  }
+
+  int face = 0;
+  bool is_u = true;
+  rep.max_cfl = max_cfl(dt, face, is_u);
+  if (rep.max_cfl > 1.0) {
+    const int i = is_u ? face % (nx_ + 1) : face % nx_;
+    const int j = is_u ? face / (nx_ + 1) : face / nx_;
+    std::ostringstream os;
+    os.precision(4);
+    os << "CFL number " << rep.max_cfl << " > 1 (velocity " << (is_u ? s_.u[face] : s_.v[face])
+       << " m/s on the " << (is_u ? "west" : "bottom") << " face of cell (" << std::min(i, nx_ - 1)
+       << ", " << std::min(j, ny_ - 1) << "), dt = " << dt << " s): reduce the time step";
+    fail(os.str());
+  }
+  if (!rep.converged && rep.mass_residual > 1000.0 * tol) {
+    std::size_t worst = 0;
+    for (std::size_t c = 0; c < nc; ++c)
+      if (std::abs(res_[c]) > std::abs(res_[worst])) worst = c;
+    std::ostringstream os;
+    os.precision(4);
+    os << "SIMPLE did not converge in " << rep.simple_iterations << " iterations (mass residual "
+       << rep.mass_residual << ", tolerance " << tol << "; largest residual in cell ("
+       << worst % nx_ << ", " << worst / nx_ << "))";
+    fail(os.str());
+  }
+  s_.u_previous = u_old_;
+  s_.v_previous = v_old_;
+  s_.dt_previous = dt;
+  s_.time += dt;
+  ++s_.steps;
+  return rep;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Read access.
+
+double GasSolver::bottom_pressure(int i) const {
+  return 1.5 * s_.p[i] - 0.5 * s_.p[nx_ + i];
+}
+
+double GasSolver::pressure_drop() const {
+  if (nx_ % 2 == 1) return bottom_pressure(nx_ / 2);
+  return 0.5 * (bottom_pressure(nx_ / 2 - 1) + bottom_pressure(nx_ / 2));
+}
+
+void GasSolver::pressure_gradient(int c, double& gx, double& gy) const {
+  const int nx = nx_, i = c % nx, j = c / nx;
+  const double* p = s_.p.data();
+  const double pe = i + 1 < nx ? 0.5 * (p[c] + p[c + 1]) : 1.5 * p[c] - 0.5 * p[c - 1];
+  const double pw = i > 0 ? 0.5 * (p[c] + p[c - 1]) : 1.5 * p[c] - 0.5 * p[c + 1];
+  const double pn = j + 1 < ny_ ? 0.5 * (p[c] + p[c + nx]) : 0.0;
+  const double ps = j > 0 ? 0.5 * (p[c] + p[c - nx]) : 1.5 * p[c] - 0.5 * p[c + nx];
+  gx = (pe - pw) / dx_;
+  gy = (pn - ps) / dy_;
+}
+
+}  // namespace fluidbed

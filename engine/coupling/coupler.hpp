@@ -1,0 +1,63 @@
+#pragma once
+// The coupler between the particle state and the gas state, which know nothing of each other
+// (model.md section 3's loop: particles -> porosity and F -> gas -> drag -> particles).
+//
+// Newton's third law (eq 21) holds exactly: each particle's drag is computed once per particle
+// step, applied to the particle in the next step, and summed per cell (averaged over the particle
+// steps of one gas step) as the force F the gas feels in that cell.
+#include <vector>
+
+#include "cfd/gas_grid.hpp"
+#include "dem/particles.hpp"
+#include "scene/settings.hpp"
+
+namespace fluidbed {
+
+class GasSolver;
+
+// The coupler's part of a saved state (bit-exact restarts mid-run).
+struct CouplingState {
+  std::vector<double> eps, drag_x, drag_y, sum_fx, sum_fy;
+  std::vector<int> cell;
+  int accumulated = 0;
+};
+
+class Coupler {
+ public:
+  Coupler(const GasGrid& grid, const Settings& s, std::size_t particles);
+
+  // Eq 22: the porosity of every cell from the particles' positions. Throws SimulationFailure
+  // naming the cell when a porosity leaves (0, 1].
+  const std::vector<double>& compute_porosity(const Particles& p, double time);
+  const std::vector<double>& porosity() const { return eps_; }
+
+  // Eqs 8-12 (and -V grad p for model A) on every particle from the current gas field and the
+  // particles' current velocities, written to Particles::ext_fx/ext_fy for the next step.
+  void compute_fluid_forces(Particles& p, const GasSolver& gas);
+
+  // Adds the drag of the step just taken to the per-cell sums (call after each particle step).
+  void accumulate_drag(const Particles& p);
+  // F per cell (N/m^3), averaged over the accumulated steps; resets the sums. Also returns the
+  // total drag on the particles over those steps (N, averaged) for the third-law check.
+  void take_interaction_force(std::vector<double>& fx, std::vector<double>& fy, double& total_x,
+                              double& total_y);
+
+  void save(CouplingState& out) const;
+  // Throws InputError when the sizes do not fit this grid and particle count.
+  void restore(const CouplingState& in, std::size_t particles);
+
+  const std::vector<double>& drag_x() const { return drag_x_; }
+  const std::vector<double>& drag_y() const { return drag_y_; }
+
+ private:
+  GasGrid grid_;
+  double rho_f_, mu_f_;
+  bool pressure_gradient_force_;
+  std::vector<double> solid_, eps_;
+  std::vector<double> drag_x_, drag_y_;  // N, per particle, from the last compute_fluid_forces
+  std::vector<int> cell_;                // cell of each particle's centre at that time
+  std::vector<double> sum_fx_, sum_fy_;  // N, per cell, summed over steps
+  int accumulated_ = 0;
+};
+
+}  // namespace fluidbed

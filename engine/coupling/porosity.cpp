@@ -1,0 +1,124 @@
+#include "coupling/porosity.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace fluidbed {
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+
+double sphere_volume(double R) {
+  return 4.0 / 3.0 * kPi * R * R * R;
+}
+}  // namespace
+
+double sphere_cap_volume(double R, double a) {
+  if (a >= R) return 0.0;
+  if (a <= -R) return sphere_volume(R);
+  const double h = R - a;                    // cap height
+  return kPi / 3.0 * h * h * (2.0 * R + a);  // pi h^2 (3R - h) / 3
+}
+
+// Derivation of the double cap (a, b >= 0 first): integrate over x the area of the circular
+// segment y > b of the cross-section, a disc of radius r = sqrt(R^2 - x^2):
+//   V = int_a^c [ r^2 acos(b / r) - b sqrt(r^2 - b^2) ] dx,   c = sqrt(R^2 - b^2).
+// The second term is elementary. For the first, integrate by parts with G = R^2 x - x^3 / 3 (so
+// G' = r^2); acos(b / r) vanishes at x = c and its derivative is -b x / (r^2 sqrt(c^2 - x^2)).
+// The remaining integrals are asin-type ones and int dx / ((R^2 - x^2) sqrt(c^2 - x^2)), which
+// x = c sin(t) turns into atan(b tan(t) / R) / (b R). Collecting terms and writing each
+// acos as an atan2 of the same triangle (acos(b / sqrt(R^2 - a^2)) = atan2(w, b), and
+// pi/2 - atan(a b / (R w)) = atan2(R w, a b)) gives the formula in the header. It is symmetric
+// in a and b, gives a quarter sphere at a = b = 0, half a cap at b = 0, and 0 at w = 0; the
+// atan2 form also holds for negative a or b inside the disc (checked against quadrature).
+double sphere_quadrant_volume(double R, double a, double b) {
+  const double w2 = R * R - a * a - b * b;
+  if (w2 > 0.0) {
+    const double w = std::sqrt(w2);
+    const double R2 = R * R;
+    return (2.0 * R2 * R * std::atan2(R * w, a * b) - a * (3.0 * R2 - a * a) * std::atan2(w, b) -
+            b * (3.0 * R2 - b * b) * std::atan2(w, a) + 2.0 * a * b * w) /
+           3.0;
+  }
+  // The corner (a, b) lies outside the sphere's equatorial disc. Then within the sphere
+  // x > a and y > b cannot both bind: x > a >= 0 forces |y| < |b|, and x < a < 0 with
+  // y < b < 0 is outside the sphere.
+  if (a >= 0.0 && b >= 0.0) return 0.0;
+  if (a >= 0.0) return sphere_cap_volume(R, a);  // b < 0: y > b holds wherever x > a
+  if (b >= 0.0) return sphere_cap_volume(R, b);  // a < 0: x > a holds wherever y > b
+  return sphere_volume(R) - sphere_cap_volume(R, -a) - sphere_cap_volume(R, -b);
+}
+
+void add_particle_volume(const GasGrid& g, double x, double y, double R,
+                         std::vector<double>& solid_volume) {
+  const double dx = g.dx();
+  const double dy = g.dy();
+  const int i = g.column(x);
+  const int j = g.row(y);
+  const int c = g.index(i, j);
+  const double volume = sphere_volume(R);
+
+  // The line the sphere crosses in each direction, if any and if it is not a wall: the step to
+  // the neighbour cell and the distance from the centre to the line (> 0 while the centre is on
+  // this side; a hair below 0 when rounding put the centre on the line's other side, which the
+  // cap and quadrant formulas handle).
+  int di = 0;
+  double ax = 0.0;
+  const double left = x - i * dx;
+  const double right = (i + 1) * dx - x;
+  if (left < R && i > 0) {
+    di = -1;
+    ax = left;
+  } else if (right < R && i + 1 < g.nx) {
+    di = 1;
+    ax = right;
+  }
+  int dj = 0;
+  double ay = 0.0;
+  const double below = y - j * dy;
+  const double above = (j + 1) * dy - y;
+  if (below < R && j > 0) {
+    dj = -1;
+    ay = below;
+  } else if (above < R && j + 1 < g.ny) {
+    dj = 1;
+    ay = above;
+  }
+
+  if (di == 0 && dj == 0) {  // the usual case: the sphere lies inside one cell
+    solid_volume[c] += volume;
+    return;
+  }
+  const int cx = c + di;         // the neighbour across the vertical line
+  const int cy = c + dj * g.nx;  // the neighbour across the horizontal line
+  if (dj == 0) {
+    const double vx = sphere_cap_volume(R, ax);
+    solid_volume[cx] += vx;
+    solid_volume[c] += volume - vx;
+    return;
+  }
+  if (di == 0) {
+    const double vy = sphere_cap_volume(R, ay);
+    solid_volume[cy] += vy;
+    solid_volume[c] += volume - vy;
+    return;
+  }
+  // Across a corner: the diagonal cell gets the double cap, each side neighbour its cap less the
+  // double cap, the centre's cell the rest (inclusion-exclusion: the four sum to the sphere).
+  const double vx = sphere_cap_volume(R, ax);
+  const double vy = sphere_cap_volume(R, ay);
+  const double vxy = sphere_quadrant_volume(R, ax, ay);
+  solid_volume[cx + dj * g.nx] += vxy;
+  solid_volume[cx] += vx - vxy;
+  solid_volume[cy] += vy - vxy;
+  solid_volume[c] += volume - vx - vy + vxy;
+}
+
+void porosity_from_solid(const GasGrid& g, const std::vector<double>& solid_volume,
+                         std::vector<double>& eps) {
+  eps.resize(solid_volume.size());
+  const double inv_dv = 1.0 / g.cell_volume();
+  for (std::size_t c = 0; c < solid_volume.size(); ++c) eps[c] = 1.0 - solid_volume[c] * inv_dv;
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,58 @@
+#include "sim/state_file.hpp"
+
+#include <cstring>
+#include <fstream>
+
+#include "core/atomic_file.hpp"
+#include "core/binary_io.hpp"
+
+namespace fluidbed {
+namespace {
+constexpr char kGasTag[8] = {'F', 'L', 'B', 'G', 'A', 'S', '0', '1'};
+}  // namespace
+
+void save_simulation_state(const std::string& path, const StateFile& f) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    write_state(out, f.dem);
+    if (!f.has_gas) return;
+    out.write(kGasTag, sizeof kGasTag);
+    const GasState& g = f.gas;
+    for (const auto* v : {&g.u, &g.v, &g.p, &g.eps, &g.preconditioner_u, &g.preconditioner_v})
+      put_vec(out, *v);
+    put(out, g.superficial_velocity);
+    put(out, g.time);
+    put(out, g.steps);
+    const CouplingState& c = f.coupling;
+    for (const auto* v : {&c.eps, &c.drag_x, &c.drag_y, &c.sum_fx, &c.sum_fy}) put_vec(out, *v);
+    put_vec(out, c.cell);
+    put(out, c.accumulated);
+    put(out, f.since_gas_step);
+  });
+}
+
+StateFile load_simulation_state(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot read state file " + path);
+  StateFile f;
+  f.dem = read_state(in, path);
+  char tag[sizeof kGasTag];
+  in.read(tag, sizeof tag);
+  if (in.gcount() == 0) return f;  // particles only
+  if (!in || std::memcmp(tag, kGasTag, sizeof tag) != 0)
+    throw InputError(path + ": state file has an unknown block after the particles");
+  f.has_gas = true;
+  BinarySource src(in, path);
+  GasState& g = f.gas;
+  for (auto* v : {&g.u, &g.v, &g.p, &g.eps, &g.preconditioner_u, &g.preconditioner_v}) src.get_vec(*v);
+  g.superficial_velocity = src.get<double>();
+  g.time = src.get<double>();
+  g.steps = src.get<std::int64_t>();
+  CouplingState& c = f.coupling;
+  for (auto* v : {&c.eps, &c.drag_x, &c.drag_y, &c.sum_fx, &c.sum_fy}) src.get_vec(*v);
+  src.get_vec(c.cell);
+  c.accumulated = src.get<int>();
+  f.since_gas_step = src.get<int>();
+  return f;
+}
+
+}  // namespace fluidbed
