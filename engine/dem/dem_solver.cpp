@@ -42,6 +42,7 @@ DemSolver::DemSolver(const Settings& s, Particles particles)
   state_.particles = std::move(particles);
   state_.pairs.resize(n);
   previous_.resize(n);
+  overlap_.assign(n, 0.0);
   state_.walls.resize(n, static_cast<int>(walls_.size()));
   // Newmark and Verlet carry the last acceleration; at rest with no contacts it is gravity.
   auto& p = state_.particles;
@@ -82,10 +83,12 @@ void DemSolver::evaluate_forces(double dtau) {
   double* fy = P.fy.data();
   double* tq = P.torque.data();
 
+  double* ov = overlap_.data();
   for (std::size_t i = 0; i < n; ++i) {
     fx[i] = P.ext_fx[i];
     fy[i] = P.ext_fy[i] - P.mass[i] * gravity_;
     tq[i] = 0.0;
+    ov[i] = 0.0;
   }
 
   std::swap(previous_, state_.pairs);
@@ -147,6 +150,8 @@ void DemSolver::evaluate_forces(double dtau) {
     ++contacts;
     sliding += f.sliding;
     const double ratio = 1.0 - L / R;
+    ov[i] = std::max(ov[i], ratio);
+    ov[j] = std::max(ov[j], ratio);
     if (ratio > max_ratio) {
       max_ratio = ratio;
       worst_pair_i_ = i;
@@ -196,6 +201,7 @@ void DemSolver::evaluate_forces(double dtau) {
       ++wall_contacts;
       sliding += f.sliding;
       max_wall_ratio = std::max(max_wall_ratio, overlap / r[i]);
+      ov[i] = std::max(ov[i], 0.5 * overlap / r[i]);
     }
   }
 

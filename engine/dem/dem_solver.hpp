@@ -55,6 +55,9 @@ class DemSolver {
   const StepDiagnostics& diagnostics() const { return diag_; }
   const std::vector<Wall>& walls() const { return walls_; }
   const ContactParams& contact_params() const { return params_; }
+  // Largest overlap ratio of each particle's contacts at the last force evaluation (pairs:
+  // 1 - L / (R_i + R_j); walls: 1 - distance / R_i, halved to the same scale).
+  const std::vector<double>& particle_overlap() const { return overlap_; }
 
   // Replaces the state (a loaded file); particle count must match the scene's.
   void set_state(DemState s);
@@ -80,6 +83,7 @@ class DemSolver {
   double width_, height_;
   double overlap_limit_;
   StepDiagnostics diag_;
+  std::vector<double> overlap_;
   int worst_pair_i_ = -1, worst_pair_j_ = -1;
 };
 

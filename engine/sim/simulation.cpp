@@ -58,7 +58,8 @@ GasParams gas_params_for(const Settings& s) {
   return p;
 }
 
-Simulation::Simulation(const Settings& s) : settings_(s), dem_(make_dem(s)) {
+Simulation::Simulation(const Settings& s)
+    : settings_(s), dem_(make_dem(s)), initial_y_(dem_.particles().y) {
   if (!s.gas.enabled) return;
   const GasGrid grid = gas_grid_for(s);
   gas_ = std::make_unique<GasSolver>(grid, gas_params_for(s));

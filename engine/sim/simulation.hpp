@@ -48,6 +48,9 @@ class Simulation {
   // The superficial gas velocity from the next gas step on (m/s).
   void set_superficial_velocity(double u);
 
+  // Each particle's height when this simulation started (for colouring by initial height band).
+  const std::vector<double>& initial_heights() const { return initial_y_; }
+
   std::uint64_t state_hash() const;
   void save_state(const std::string& path) const;
   // Bit-exact restart: replaces the whole state (particles, gas, coupling), time included.
@@ -61,6 +64,7 @@ class Simulation {
   std::unique_ptr<GasSolver> gas_;
   std::unique_ptr<Coupler> coupler_;
   int since_gas_step_ = 0;
+  std::vector<double> initial_y_;
   std::vector<double> fx_, fy_;  // scratch: F per cell
   CouplingDiagnostics coupling_diag_;
 };

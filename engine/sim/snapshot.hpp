@@ -1,0 +1,69 @@
+#pragma once
+// An immutable copy of what a picture, a file or a panel needs from the simulation at one
+// instant. The engine thread fills one after a step and publishes it; readers (renderer, VTK
+// writer, viewer) never touch the live state.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace fluidbed {
+
+class Simulation;
+
+struct Snapshot {
+  double time = 0.0;       // s
+  std::int64_t step = 0;
+  double dt = 0.0;         // s
+  // Domain and inlet.
+  double width = 0.0, height = 0.0, thickness = 0.0;  // m
+  bool top_wall = false;
+  std::string inlet_kind;               // "jet", "uniform", "none" (or "" without gas)
+  double jet_width = 0.0;               // m
+  double superficial_velocity = 0.0;    // m/s
+  double jet_velocity = 0.0;            // m/s
+  double dp = 0.0;                      // Pa, bottom to top on the symmetry line
+  double max_overlap_ratio = 0.0;
+  double kinetic_energy = 0.0;          // J
+  int contacts = 0;
+  // Particles (index = particle id).
+  std::vector<double> x, y, radius;     // m
+  std::vector<double> vx, vy, spin;     // m/s, rad/s
+  std::vector<double> fx, fy, torque;   // N, N m: total force (contacts, gravity, gas) and torque
+  std::vector<double> overlap;          // largest overlap ratio of each particle's contacts
+  std::vector<double> initial_y;        // m, height at the start of the run (mixing colours)
+  // Gas (empty without gas): nx * ny cells, c = j * nx + i.
+  int nx = 0, ny = 0;
+  std::vector<double> gas_ux, gas_uy;   // m/s, interstitial velocity at cell centres
+  std::vector<double> porosity;         // -
+  std::vector<double> pressure;         // Pa
+
+  std::size_t particles() const { return x.size(); }
+  bool has_gas() const { return nx > 0; }
+};
+
+// Copies the simulation's state into `out` (reusing its buffers).
+void take_snapshot(const Simulation& sim, Snapshot& out);
+
+// The hand-off between the engine thread and its readers: the writer publishes a whole snapshot,
+// a reader takes the newest one. The lock is held only to swap a pointer, never while a snapshot
+// is filled or drawn, so the engine never waits for the screen.
+class SnapshotChannel {
+ public:
+  // Returns a buffer the writer may fill (not visible to readers until published).
+  std::shared_ptr<Snapshot> acquire();
+  void publish(std::shared_ptr<Snapshot> s);
+  // The newest published snapshot (nullptr before the first), and its sequence number.
+  std::shared_ptr<const Snapshot> latest(std::uint64_t* sequence = nullptr) const;
+  std::uint64_t sequence() const { return sequence_.load(std::memory_order_acquire); }
+
+ private:
+  mutable std::mutex mutex_;
+  std::shared_ptr<Snapshot> latest_;
+  std::shared_ptr<Snapshot> spare_;
+  std::atomic<std::uint64_t> sequence_{0};
+};
+
+}  // namespace fluidbed
