@@ -7,4 +7,4 @@ scripts/build.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 BUILD_DIR=build-sanitize BUILD_TYPE=RelWithDebInfo scripts/build.sh -DFLUIDBED_SANITIZE=ON -DFLUIDBED_BENCHMARKS=OFF
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)"
+  ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" -LE long

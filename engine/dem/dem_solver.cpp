@@ -94,7 +94,9 @@ void DemSolver::evaluate_forces(double dtau) {
   std::swap(previous_, state_.pairs);
   PairHistory& hist = state_.pairs;
   hist.clear_counts();
+  PhaseClock clock(times_);
   grid_.build(P.x, P.y);
+  clock.lap(Phase::Neighbours);
 
   double max_ratio = 0.0;
   int contacts = 0, sliding = 0;
@@ -205,6 +207,7 @@ void DemSolver::evaluate_forces(double dtau) {
     }
   }
 
+  clock.lap(Phase::Contacts);
   diag_.max_overlap_ratio = max_ratio;
   diag_.max_wall_overlap_ratio = max_wall_ratio;
   diag_.pair_contacts = contacts;
@@ -213,17 +216,20 @@ void DemSolver::evaluate_forces(double dtau) {
 }
 
 void DemSolver::evaluate_forces_dispatch(double dtau) {
+  times_.add(Phase::Integration, PhaseTimes::Clock::now() - integration_start_);
   if (incremental_) {
     evaluate_forces<true>(dtau);
   } else {
     evaluate_forces<false>(dtau);
   }
+  integration_start_ = PhaseTimes::Clock::now();
 }
 
 void DemSolver::step() {
   Particles& P = state_.particles;
   const std::size_t n = P.size();
   const double h = dt_;
+  integration_start_ = PhaseTimes::Clock::now();
   if (frozen_) {  // a fixed bed: the clock runs, nothing moves
     std::fill(P.vx.begin(), P.vx.end(), 0.0);
     std::fill(P.vy.begin(), P.vy.end(), 0.0);
@@ -296,6 +302,7 @@ void DemSolver::step() {
   }
   state_.time = static_cast<double>(++state_.step) * dt_;
   finish_step();
+  times_.add(Phase::Integration, PhaseTimes::Clock::now() - integration_start_);
 }
 
 void DemSolver::finish_step() {
@@ -341,9 +348,15 @@ void DemSolver::finish_step() {
 
 std::uint64_t DemSolver::state_hash() const {
   Fnv1a h;
-  const Particles& P = state_.particles;
   h.value(state_.time);
   h.value(state_.step);
+  h.value(configuration_hash());
+  return h.digest();
+}
+
+std::uint64_t DemSolver::configuration_hash() const {
+  Fnv1a h;
+  const Particles& P = state_.particles;
   for (const auto* v : {&P.x, &P.y, &P.vx, &P.vy, &P.w, &P.ax, &P.ay, &P.aw}) h.values(*v);
   const PairHistory& ph = state_.pairs;
   for (std::size_t i = 0; i < P.size(); ++i) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/phase_timer.hpp"
 #include "dem/cell_grid.hpp"
 #include "dem/contact_history.hpp"
 #include "dem/contact_law.hpp"
@@ -61,7 +62,13 @@ class DemSolver {
 
   // Replaces the state (a loaded file); particle count must match the scene's.
   void set_state(DemState s);
+  // Time spent per phase since construction (or reset), for the benchmark's split.
+  PhaseTimes& phase_times() const { return times_; }
+
   std::uint64_t state_hash() const;
+  // The particles' configuration alone (positions, velocities, spins, contact history), without
+  // the clock: equal when one run hands its particles to the next.
+  std::uint64_t configuration_hash() const;
 
  private:
   template <bool Incremental>
@@ -84,6 +91,8 @@ class DemSolver {
   double overlap_limit_;
   StepDiagnostics diag_;
   std::vector<double> overlap_;
+  mutable PhaseTimes times_;
+  PhaseTimes::Clock::time_point integration_start_;
   int worst_pair_i_ = -1, worst_pair_j_ = -1;
 };
 

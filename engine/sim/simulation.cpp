@@ -84,19 +84,25 @@ void Simulation::set_superficial_velocity(double u) {
 void Simulation::step() {
   dem_.step();
   if (!gas_) return;
+  PhaseClock clock(dem_.phase_times());
   Particles& p = dem_.particles();
   coupler_->accumulate_drag(p);  // the drag the particles felt in this step
-  if (++since_gas_step_ >= settings_.coupling.particle_steps_per_gas_step) gas_step();
+  if (++since_gas_step_ >= settings_.coupling.particle_steps_per_gas_step) {
+    gas_step(clock);
+  }
   coupler_->compute_fluid_forces(p, *gas_);  // for the next step
+  clock.lap(Phase::Coupling);
 }
 
-void Simulation::gas_step() {
+void Simulation::gas_step(PhaseClock& clock) {
   const double dt = since_gas_step_ * settings_.time.dt;
   since_gas_step_ = 0;
   const auto& eps = coupler_->compute_porosity(dem_.particles(), time());
   CouplingDiagnostics& d = coupling_diag_;
   coupler_->take_interaction_force(fx_, fy_, d.drag_total_x, d.drag_total_y);
+  clock.lap(Phase::Coupling);
   d.gas = gas_->step(dt, eps, fx_, fy_);
+  clock.lap(Phase::Gas);
   ++d.gas_steps;
   gas_->force_on_gas(d.gas_force_x, d.gas_force_y);
   double wx = 0.0, wy = 0.0;
@@ -138,6 +144,21 @@ void Simulation::load_state(const std::string& path) {
     since_gas_step_ = f.since_gas_step;
     coupler_->restore(f.coupling, particle_count());
   }
+}
+
+void Simulation::continue_from(const std::string& path) {
+  load_state(path);
+  DemState& st = dem_.state();
+  st.time = 0.0;
+  st.step = 0;
+  if (gas_) {
+    GasState g = gas_->state();
+    g.time = 0.0;
+    g.steps = 0;
+    gas_->set_state(g);
+    gas_->set_superficial_velocity(settings_.inlet.superficial_velocity);
+  }
+  initial_y_ = dem_.particles().y;
 }
 
 }  // namespace fluidbed

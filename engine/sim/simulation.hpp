@@ -55,9 +55,12 @@ class Simulation {
   void save_state(const std::string& path) const;
   // Bit-exact restart: replaces the whole state (particles, gas, coupling), time included.
   void load_state(const std::string& path);
+  // A new run from where another ended (the sweep's decreasing branch): the whole state of the
+  // file, with the clock set back to zero and this scene's inlet velocity.
+  void continue_from(const std::string& path);
 
  private:
-  void gas_step();
+  void gas_step(PhaseClock& clock);
 
   Settings settings_;
   DemSolver dem_;

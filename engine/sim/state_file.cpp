@@ -8,7 +8,7 @@
 
 namespace fluidbed {
 namespace {
-constexpr char kGasTag[8] = {'F', 'L', 'B', 'G', 'A', 'S', '0', '1'};
+constexpr char kGasTag[8] = {'F', 'L', 'B', 'G', 'A', 'S', '0', '2'};
 }  // namespace
 
 void save_simulation_state(const std::string& path, const StateFile& f) {
@@ -17,8 +17,10 @@ void save_simulation_state(const std::string& path, const StateFile& f) {
     if (!f.has_gas) return;
     out.write(kGasTag, sizeof kGasTag);
     const GasState& g = f.gas;
-    for (const auto* v : {&g.u, &g.v, &g.p, &g.eps, &g.preconditioner_u, &g.preconditioner_v})
+    for (const auto* v : {&g.u, &g.v, &g.p, &g.eps, &g.preconditioner_u, &g.preconditioner_v,
+                          &g.u_previous, &g.v_previous})
       put_vec(out, *v);
+    put(out, g.dt_previous);
     put(out, g.superficial_velocity);
     put(out, g.time);
     put(out, g.steps);
@@ -43,7 +45,10 @@ StateFile load_simulation_state(const std::string& path) {
   f.has_gas = true;
   BinarySource src(in, path);
   GasState& g = f.gas;
-  for (auto* v : {&g.u, &g.v, &g.p, &g.eps, &g.preconditioner_u, &g.preconditioner_v}) src.get_vec(*v);
+  for (auto* v : {&g.u, &g.v, &g.p, &g.eps, &g.preconditioner_u, &g.preconditioner_v,
+                  &g.u_previous, &g.v_previous})
+    src.get_vec(*v);
+  g.dt_previous = src.get<double>();
   g.superficial_velocity = src.get<double>();
   g.time = src.get<double>();
   g.steps = src.get<std::int64_t>();

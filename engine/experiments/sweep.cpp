@@ -1,0 +1,164 @@
+#include "experiments/sweep.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <numeric>
+#include <thread>
+
+#include "core/errors.hpp"
+#include "sim/packed_bed.hpp"
+#include "sim/run.hpp"
+#include "sim/simulation.hpp"
+
+namespace fluidbed {
+namespace {
+
+std::string point_name(const std::string& branch, double u) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s-%.3f", branch.c_str(), u);
+  return buf;
+}
+
+// One run of the sweep: from the scene's start (up) or from `from_state` (down).
+SweepPoint run_point(const Settings& scene, const SweepOptions& o, const std::string& branch,
+                     double u, const std::string& from_state) {
+  namespace fs = std::filesystem;
+  SweepPoint pt;
+  pt.branch = branch;
+  pt.u = u;
+  Settings s = scene;
+  s.inlet.superficial_velocity = u;
+  s.time.end = o.run_time;
+  s.diagnostics.averaging_start = o.averaging_start;
+  s.diagnostics.save_state.clear();
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path dir = fs::path(o.out_dir) / "runs" / point_name(branch, u);
+  try {
+    Simulation sim(s);
+    if (!from_state.empty()) sim.continue_from(from_state);
+    pt.start_hash = sim.dem().configuration_hash();
+    const RunResult r = run_simulation(sim, RunOptions{});
+    write_run_outputs(dir.string(), r);
+    pt.dp_mean = r.summary.value("dp_mean_pa", 0.0);
+    pt.dp_std = r.summary.value("dp_std_pa", 0.0);
+    pt.end_hash = sim.dem().configuration_hash();
+    pt.state_path = (dir / "final.state").string();
+    sim.save_state(pt.state_path);
+    pt.ok = true;
+  } catch (const SimulationFailure& e) {
+    pt.error = e.what();
+  }
+  pt.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return pt;
+}
+
+}  // namespace
+
+std::vector<double> default_sweep_velocities() {
+  std::vector<double> v = {0.5, 0.8, 1.0, 1.2};
+  for (int k = 14; k <= 32; ++k) v.push_back(k / 10.0);  // 1.4 ... 3.2 by 0.1
+  return v;
+}
+
+SweepResult run_sweep(const Settings& scene, const SweepOptions& options) {
+  SweepOptions o = options;
+  if (o.velocities.empty()) o.velocities = default_sweep_velocities();
+  if (o.out_dir.empty()) throw InputError("sweep: an output folder is needed");
+  if (!scene.gas.enabled) throw InputError("sweep: the scene has no [gas] section");
+  if (!(o.run_time > 0.0)) throw InputError("sweep: the run time must be positive");
+  if (!(o.averaging_start >= 0.0 && o.averaging_start < o.run_time))
+    throw InputError("sweep: the averaging start must lie inside the run");
+  for (double u : o.velocities)
+    if (!(u >= 0.0) || !std::isfinite(u)) throw InputError("sweep: velocities must be >= 0");
+  std::sort(o.velocities.begin(), o.velocities.end());
+  o.velocities.erase(std::unique(o.velocities.begin(), o.velocities.end()), o.velocities.end());
+  if (o.velocities.size() < 2) throw InputError("sweep: needs at least two velocities");
+  o.threads = std::max(1, o.threads);
+
+  const auto start = std::chrono::steady_clock::now();
+  // Pack once before the runs share the cache.
+  if (scene.particles.placement == "packed") {
+    packed_bed_state(scene, o.log);
+  }
+  const std::size_t n = o.velocities.size();
+  SweepResult result;
+  result.up.resize(n);
+  result.down.resize(n - 1);
+  std::mutex log_mutex;
+  auto report = [&](const SweepPoint& p) {
+    if (!o.log) return;
+    char line[256];
+    if (p.ok)
+      std::snprintf(line, sizeof line, "%-4s U = %.3f m/s: dp = %.0f +- %.0f Pa (%.0f s)",
+                    p.branch.c_str(), p.u, p.dp_mean, p.dp_std, p.wall_time);
+    else
+      std::snprintf(line, sizeof line, "%-4s U = %.3f m/s: failed: %s", p.branch.c_str(), p.u,
+                    p.error.c_str());
+    std::lock_guard lock(log_mutex);
+    o.log(line);
+  };
+
+  // The top velocity first: it starts the decreasing chain. One worker then walks the chain
+  // down while the others take the independent increasing runs.
+  result.up[n - 1] = run_point(scene, o, "up", o.velocities[n - 1], "");
+  report(result.up[n - 1]);
+  std::atomic<std::size_t> next_up{0};
+  auto up_worker = [&] {
+    for (std::size_t k; (k = next_up.fetch_add(1)) < n - 1;) {
+      result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
+      report(result.up[k]);
+    }
+  };
+  auto down_chain = [&] {
+    const SweepPoint* from = &result.up[n - 1];
+    for (std::size_t k = n - 1; k-- > 0;) {
+      if (!from->ok) {
+        result.down[k].branch = "down";
+        result.down[k].u = o.velocities[k];
+        result.down[k].error = "the run above it failed";
+        continue;
+      }
+      result.down[k] = run_point(scene, o, "down", o.velocities[k], from->state_path);
+      report(result.down[k]);
+      from = &result.down[k];
+    }
+  };
+  if (o.threads == 1) {
+    up_worker();
+    down_chain();
+  } else {
+    std::vector<std::thread> pool;
+    pool.emplace_back(down_chain);
+    for (int t = 1; t < o.threads; ++t) pool.emplace_back(up_worker);
+    for (auto& t : pool) t.join();
+  }
+
+  // Umf from the decreasing branch, with the shared top point.
+  std::vector<double> us, dps;
+  for (const auto& p : result.down)
+    if (p.ok) {
+      us.push_back(p.u);
+      dps.push_back(p.dp_mean);
+    }
+  if (result.up[n - 1].ok) {
+    us.push_back(result.up[n - 1].u);
+    dps.push_back(result.up[n - 1].dp_mean);
+  }
+  result.umf = fit_umf(us, dps);
+  constexpr double kPi = 3.14159265358979323846;
+  const double d = scene.particles.diameter;
+  const double mass = scene.particles.count * scene.particles.density * kPi * d * d * d / 6.0;
+  result.bed_weight_per_area =
+      mass * scene.physics.gravity / (scene.domain.width * scene.domain.thickness);
+  result.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace fluidbed

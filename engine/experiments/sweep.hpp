@@ -1,0 +1,50 @@
+#pragma once
+// The paper's velocity sweep (Fig. 6). Increasing branch: each velocity starts from the packed
+// bed. Decreasing branch: each velocity starts from the final state (particles, contacts and gas)
+// of the run at the next higher velocity; the highest velocity's run is shared by both branches.
+// The mean pressure drop of each run is eq 30 over its settled part. Runs of the increasing
+// branch are independent and run in parallel; the decreasing chain runs beside them.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "experiments/umf_fit.hpp"
+#include "scene/settings.hpp"
+
+namespace fluidbed {
+
+struct SweepOptions {
+  std::vector<double> velocities;  // m/s, superficial; empty: default_sweep_velocities()
+  double run_time = 2.0;           // s, simulated per velocity
+  double averaging_start = 0.5;    // s into each run: tau_1 of eq 30
+  int threads = 2;                 // runs at once
+  std::string out_dir;             // per-run outputs and states go under it (required)
+  std::function<void(const std::string&)> log;  // one line per finished run (may be empty)
+};
+
+struct SweepPoint {
+  std::string branch;  // "up" or "down"
+  double u = 0.0;      // m/s
+  bool ok = false;
+  std::string error;   // why the run failed (a SimulationFailure's words)
+  double dp_mean = 0.0, dp_std = 0.0;  // Pa
+  double wall_time = 0.0;              // s
+  std::uint64_t start_hash = 0, end_hash = 0;  // particle configuration hashes (hand-over)
+  std::string state_path;                      // its final state
+};
+
+struct SweepResult {
+  std::vector<SweepPoint> up, down;  // each sorted by increasing velocity
+  UmfFit umf;                        // from the decreasing branch
+  double bed_weight_per_area = 0.0;  // Pa
+  double wall_time = 0.0;            // s
+};
+
+// 23 velocities from 0.5 to 3.2 m/s, denser around 1.4-2.2 m/s (the paper's 23 runs).
+std::vector<double> default_sweep_velocities();
+
+// Throws InputError for bad options; failed runs are recorded, not thrown.
+SweepResult run_sweep(const Settings& scene, const SweepOptions& options);
+
+}  // namespace fluidbed

@@ -1,0 +1,73 @@
+// The velocity sweep's logic (branch order, state hand-over) on a small fast bed, and the
+// minimum-fluidization fit on synthetic curves with known answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "../test_support.hpp"
+#include "experiments/sweep.hpp"
+#include "experiments/umf_fit.hpp"
+#include "scene/scene_loader.hpp"
+
+using namespace fluidbed;
+
+TEST(UmfFit, FindsTheKneeOfAPiecewiseCurve) {
+  // dp = 2000 U below 1.8 m/s, 3600 Pa above, with a +-20 Pa wobble: U_mf = 1.8 m/s.
+  std::vector<double> u, dp;
+  for (double x : default_sweep_velocities()) {
+    u.push_back(x);
+    dp.push_back(std::min(2000.0 * x, 3600.0) + 20.0 * std::sin(7.0 * x));
+  }
+  const UmfFit f = fit_umf(u, dp);
+  ASSERT_TRUE(f.ok) << f.why;
+  EXPECT_NEAR(f.umf, 1.8, 0.02);
+  EXPECT_NEAR(f.plateau, 3600.0, 15.0);
+  EXPECT_NEAR(f.slope, 2000.0, 60.0);
+  // A line with an offset and unsorted input: dp = 500 + 1500 U up to U = 2.0, then 3500.
+  const UmfFit g = fit_umf({3.0, 0.5, 2.5, 1.0, 2.2, 1.5, 1.2, 2.8},
+                           {3500, 1250, 3500, 2000, 3500, 2750, 2300, 3500});
+  ASSERT_TRUE(g.ok);
+  EXPECT_NEAR(g.umf, 2.0, 1e-9);
+  EXPECT_FALSE(fit_umf({1.0, 2.0, 3.0}, {1, 2, 3}).ok);  // too few points
+}
+
+TEST(Sweep, BranchOrderAndStateHandOver) {
+  Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml",
+                          {"particles.placement=lattice", "particles.count=150",
+                           "particles.fill_height=0.08", "inlet.kind=uniform"});
+  SweepOptions o;
+  o.velocities = {1.5, 0.5, 1.0};  // any order in, sorted out
+  o.run_time = 0.006;
+  o.averaging_start = 0.003;
+  o.threads = 2;
+  o.out_dir = fluidbed::testing::temp_dir("sweep").string();
+  const SweepResult r = run_sweep(s, o);
+  ASSERT_EQ(r.up.size(), 3u);
+  ASSERT_EQ(r.down.size(), 2u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_TRUE(r.up[k].ok) << r.up[k].error;
+    EXPECT_EQ(r.up[k].branch, "up");
+    // Every increasing run starts from the same bed.
+    EXPECT_EQ(r.up[k].start_hash, r.up[0].start_hash);
+  }
+  EXPECT_DOUBLE_EQ(r.up[0].u, 0.5);
+  EXPECT_DOUBLE_EQ(r.up[2].u, 1.5);
+  EXPECT_DOUBLE_EQ(r.down[1].u, 1.0);
+  EXPECT_DOUBLE_EQ(r.down[0].u, 0.5);
+  // Decreasing branch: 1.0 starts where 1.5 ended, 0.5 where 1.0 ended.
+  EXPECT_EQ(r.down[1].start_hash, r.up[2].end_hash);
+  EXPECT_EQ(r.down[0].start_hash, r.down[1].end_hash);
+  EXPECT_NE(r.down[0].start_hash, r.up[0].start_hash);
+  for (const auto& p : r.down) {
+    EXPECT_TRUE(p.ok) << p.error;
+    EXPECT_TRUE(std::filesystem::exists(p.state_path));
+    EXPECT_GT(p.dp_mean, 0.0);
+  }
+  // Same sweep on one thread: the same numbers (each run is deterministic).
+  o.threads = 1;
+  o.out_dir = fluidbed::testing::temp_dir("sweep1").string();
+  const SweepResult r1 = run_sweep(s, o);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(r1.up[k].dp_mean, r.up[k].dp_mean);
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(r1.down[k].end_hash, r.down[k].end_hash);
+}
