@@ -1,39 +1,24 @@
 #pragma once
-// Contact history (the accumulated displacements of eqs 13-17) in flat arrays, no map.
+// Contact history in flat arrays, no map.
 //
-// Pair contacts: each pair is owned by its lower index, which keeps up to kSlots partners. The
-// history of the previous step is read and the new step's written into a second buffer, so
-// contacts that ended simply vanish. Wall contacts: one slot per particle and wall.
+// PairContacts is the saved form of the pair history: the touching pairs (i < j), sorted by
+// (i, j), with their accumulated displacements (eqs 13-17). The solver's working copy lives in
+// the neighbour list (one slot per candidate pair) and is exported to this form for state files
+// and hashes. WallHistory keeps one slot per particle and wall.
 #include <cstdint>
 #include <vector>
 
 namespace fluidbed {
 
-struct PairHistory {
-  static constexpr int kSlots = 12;  // owned contacts per particle (a dense 2D packing has <= 6)
-  std::vector<std::uint8_t> count;   // per particle
-  std::vector<std::int32_t> partner; // [i * kSlots + k]
-  std::vector<double> dn, dt;        // m, normal and tangential displacement
-
-  void resize(std::size_t n) {
-    count.assign(n, 0);
-    partner.assign(n * kSlots, -1);
-    dn.assign(n * kSlots, 0.0);
-    dt.assign(n * kSlots, 0.0);
-  }
-  void clear_counts() { std::fill(count.begin(), count.end(), std::uint8_t{0}); }
-
-  // Slot of (lo, hi) or -1.
-  int find(std::int32_t lo, std::int32_t hi) const {
-    const std::size_t base = static_cast<std::size_t>(lo) * kSlots;
-    for (int k = 0; k < count[lo]; ++k)
-      if (partner[base + k] == hi) return static_cast<int>(base) + k;
-    return -1;
-  }
-  std::size_t total() const {
-    std::size_t t = 0;
-    for (auto c : count) t += c;
-    return t;
+struct PairContacts {
+  std::vector<std::int32_t> i, j;  // particle indices, i < j, sorted by (i, j)
+  std::vector<double> dn, dt;      // m, normal and tangential displacement
+  std::size_t size() const { return i.size(); }
+  void clear() {
+    i.clear();
+    j.clear();
+    dn.clear();
+    dt.clear();
   }
 };
 

@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "core/hash.hpp"
+#include "core/threads.hpp"
 
 namespace fluidbed {
 
@@ -33,15 +34,13 @@ DemSolver::DemSolver(const Settings& s, Particles particles)
   params_.mu = s.contact.friction;
 
   const std::size_t n = particles.size();
+  threads_ = resolve_threads(s.threads);
+  // A fork costs a few microseconds: worth it only when a step has real work.
+  parallel_ = threads_ > 1 && n >= 256;
   double dmax = 0.0;
   for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
-  // Cells at least one largest diameter wide (so touching pairs are neighbours), and no more
-  // cells than about twice the particles, so a sparse scene (one dropped particle) costs nothing.
-  const double sparse = std::sqrt(width_ * height_ / (2.0 * static_cast<double>(n)));
-  grid_.configure(width_, height_, std::max(dmax, sparse));
+  list_.configure(width_, height_, dmax, s.contact.skin * dmax, n);
   state_.particles = std::move(particles);
-  state_.pairs.resize(n);
-  previous_.resize(n);
   overlap_.assign(n, 0.0);
   state_.walls.resize(n, static_cast<int>(walls_.size()));
   // Newmark and Verlet carry the last acceleration; at rest with no contacts it is gravity.
@@ -60,6 +59,15 @@ void DemSolver::set_state(DemState s) {
     throw InputError("state was saved with " + std::to_string(s.walls.walls) +
                      " walls but the scene has " + std::to_string(walls_.size()));
   state_ = std::move(s);
+  list_.import_history(state_.pairs);
+  list_.build(state_.particles);
+  state_.pairs.clear();
+}
+
+DemState DemSolver::exported_state() const {
+  DemState copy = state_;
+  list_.export_history(copy.pairs);
+  return copy;
 }
 
 void DemSolver::fail(const std::string& what) const {
@@ -69,109 +77,124 @@ void DemSolver::fail(const std::string& what) const {
   throw SimulationFailure(os.str());
 }
 
+template <class F>
+void DemSolver::for_particles(F&& f) {
+  const auto n = static_cast<std::int64_t>(state_.particles.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_)
+  for (std::int64_t i = 0; i < n; ++i) f(static_cast<std::size_t>(i));
+}
+
 template <bool Incremental>
 void DemSolver::evaluate_forces(double dtau) {
   Particles& P = state_.particles;
-  const std::size_t n = P.size();
+  const auto n = static_cast<std::int64_t>(P.size());
   const double* x = P.x.data();
   const double* y = P.y.data();
   const double* vx = P.vx.data();
   const double* vy = P.vy.data();
   const double* w = P.w.data();
   const double* r = P.radius.data();
-  double* fx = P.fx.data();
-  double* fy = P.fy.data();
-  double* tq = P.torque.data();
 
-  double* ov = overlap_.data();
-  for (std::size_t i = 0; i < n; ++i) {
-    fx[i] = P.ext_fx[i];
-    fy[i] = P.ext_fy[i] - P.mass[i] * gravity_;
-    tq[i] = 0.0;
-    ov[i] = 0.0;
-  }
-
-  std::swap(previous_, state_.pairs);
-  PairHistory& hist = state_.pairs;
-  hist.clear_counts();
   PhaseClock clock(times_);
-  grid_.build(P.x, P.y);
+  if (list_.stale(P)) list_.build(P);
   clock.lap(Phase::Neighbours);
 
-  double max_ratio = 0.0;
+  // Pass 1, over candidate pairs: each pair's force from its history, written to its slot.
+  NeighbourList& L = list_;
+  const auto m = static_cast<std::int64_t>(L.size());
+  const std::int32_t* li = L.i.data();
+  const std::int32_t* lj = L.j.data();
+  double* ldn = L.dn.data();
+  double* ldt = L.dt.data();
+  std::uint8_t* touch = L.touching.data();
+  double* lfx = L.fx.data();
+  double* lfy = L.fy.data();
+  double* lft = L.ft.data();
+  double* lratio = L.ratio.data();
+  const ContactParams params = params_;
   int contacts = 0, sliding = 0;
-  bool overflow = false;
-  grid_.for_each_candidate_pair([&](int a, int b) {
-    const int i = std::min(a, b), j = std::max(a, b);
+  double max_ratio = 0.0;
+#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_) \
+    reduction(+ : contacts, sliding) reduction(max : max_ratio)
+  for (std::int64_t k = 0; k < m; ++k) {
+    const int i = li[k], j = lj[k];
     const double px = x[j] - x[i], py = y[j] - y[i];
     const double R = r[i] + r[j];
     const double L2 = px * px + py * py;
-    if (L2 >= R * R) return;
-    const double L = std::sqrt(L2);
-    if (L <= 0.0) return;  // coincident centres: caught below as a full overlap
-    const double nx = px / L, ny = py / L;
+    if (L2 >= R * R || L2 <= 0.0) {  // apart (coincident centres are caught as an overlap)
+      touch[k] = 0;
+      ldn[k] = ldt[k] = 0.0;
+      lfx[k] = lfy[k] = lft[k] = 0.0;
+      lratio[k] = L2 <= 0.0 ? 1.0 : 0.0;
+      max_ratio = std::max(max_ratio, lratio[k]);
+      continue;
+    }
+    const double Lc = std::sqrt(L2);
+    const double nx = px / Lc, ny = py / Lc;
     const double tx = -ny, ty = nx;
     const double vrx = vx[i] - vx[j], vry = vy[i] - vy[j];
     const double vn = vrx * nx + vry * ny;
     const double vt = vrx * tx + vry * ty + w[i] * r[i] + w[j] * r[j];
-
-    double dn = 0.0, dt = 0.0, tau = dtau;
-    const int slot = previous_.find(i, j);
-    if (slot >= 0) {
-      dn = previous_.dn[slot];
-      dt = previous_.dt[slot];
-    } else if (Incremental) {
-      tau = std::min(time_since_touch(px, py, -vrx, -vry, R, L), dtau);  // eq 13
+    double dn = ldn[k], dt = ldt[k], tau = dtau;
+    if (!touch[k]) {
+      dn = dt = 0.0;
+      if (Incremental) tau = std::min(time_since_touch(px, py, -vrx, -vry, R, Lc), dtau);  // eq 13
     }
     if constexpr (Incremental) {
       dn += vn * tau;  // eqs 14, 16
     } else {
-      dn = R - L;
+      dn = R - Lc;
     }
     dt += vt * tau;  // eqs 15, 17
-    const ContactForce f = contact_force(params_, dn, dt, vn, vt);
-
-    const int k = hist.count[i];
-    if (k == PairHistory::kSlots) {
-      overflow = true;
-      return;
-    }
-    const std::size_t idx = static_cast<std::size_t>(i) * PairHistory::kSlots + k;
-    hist.partner[idx] = j;
-    hist.dn[idx] = dn;
-    hist.dt[idx] = dt;
-    hist.count[i] = static_cast<std::uint8_t>(k + 1);
-
-    const double Fx = f.fn * nx + f.ft * tx, Fy = f.fn * ny + f.ft * ty;
-    fx[i] += Fx;
-    fy[i] += Fy;
-    fx[j] -= Fx;
-    fy[j] -= Fy;
-    tq[i] += r[i] * f.ft;
-    tq[j] += r[j] * f.ft;
+    const ContactForce f = contact_force(params, dn, dt, vn, vt);
+    touch[k] = 1;
+    ldn[k] = dn;
+    ldt[k] = dt;
+    lfx[k] = f.fn * nx + f.ft * tx;
+    lfy[k] = f.fn * ny + f.ft * ty;
+    lft[k] = f.ft;
+    lratio[k] = 1.0 - Lc / R;
+    max_ratio = std::max(max_ratio, lratio[k]);
     ++contacts;
     sliding += f.sliding;
-    const double ratio = 1.0 - L / R;
-    ov[i] = std::max(ov[i], ratio);
-    ov[j] = std::max(ov[j], ratio);
-    if (ratio > max_ratio) {
-      max_ratio = ratio;
-      worst_pair_i_ = i;
-      worst_pair_j_ = j;
-    }
-  });
-  if (overflow) fail("more than " + std::to_string(PairHistory::kSlots) +
-                     " contacts on one particle (runaway overlap)");
+  }
 
-  // Walls: one history slot per particle and wall.
+  // Pass 2, over particles: gravity, gas, the pair forces gathered in a fixed order (entries
+  // where the particle is second, then first), and the walls.
+  const std::int32_t* fb = L.first_begin.data();
+  const std::int32_t* sb = L.second_begin.data();
+  const std::int32_t* sp = L.second_pair.data();
   WallHistory& wh = state_.walls;
   const int nw = static_cast<int>(walls_.size());
+  const Wall* walls = walls_.data();
+  double* fx = P.fx.data();
+  double* fy = P.fy.data();
+  double* tq = P.torque.data();
+  double* ov = overlap_.data();
+  const double g = gravity_;
   double max_wall_ratio = 0.0;
   int wall_contacts = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < nw; ++k) {
-      const Wall& wall = walls_[k];
-      const std::size_t s = i * nw + k;
+#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_) \
+    reduction(+ : wall_contacts, sliding) reduction(max : max_wall_ratio)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
+    for (std::int32_t q = sb[i]; q < sb[i + 1]; ++q) {
+      const std::int32_t k = sp[q];
+      fxi -= lfx[k];
+      fyi -= lfy[k];
+      tqi += r[i] * lft[k];
+      ovi = std::max(ovi, lratio[k]);
+    }
+    for (std::int32_t k = fb[i]; k < fb[i + 1]; ++k) {
+      fxi += lfx[k];
+      fyi += lfy[k];
+      tqi += r[i] * lft[k];
+      ovi = std::max(ovi, lratio[k]);
+    }
+    for (int c = 0; c < nw; ++c) {
+      const Wall& wall = walls[c];
+      const std::size_t s = i * nw + c;
       const double d = wall.nx * x[i] + wall.ny * y[i] - wall.offset;
       if (d >= r[i]) {
         wh.active[s] = 0;
@@ -185,34 +208,46 @@ void DemSolver::evaluate_forces(double dtau) {
       const double vn = vx[i] * nx + vy[i] * ny;
       const double vt = vx[i] * tx + vy[i] * ty + w[i] * r[i];
       double dn = wh.dn[s], dt = wh.dt[s], tau = dtau;
-      if (!wh.active[s] && Incremental)
-        tau = std::min(time_since_touch_wall(overlap, vn), dtau);
+      if (!wh.active[s] && Incremental) tau = std::min(time_since_touch_wall(overlap, vn), dtau);
       if constexpr (Incremental) {
         dn += vn * tau;
       } else {
         dn = overlap;
       }
       dt += vt * tau;
-      const ContactForce f = contact_force(params_, dn, dt, vn, vt);
+      const ContactForce f = contact_force(params, dn, dt, vn, vt);
       wh.active[s] = 1;
       wh.dn[s] = dn;
       wh.dt[s] = dt;
-      fx[i] += f.fn * nx + f.ft * tx;
-      fy[i] += f.fn * ny + f.ft * ty;
-      tq[i] += r[i] * f.ft;
+      fxi += f.fn * nx + f.ft * tx;
+      fyi += f.fn * ny + f.ft * ty;
+      tqi += r[i] * f.ft;
       ++wall_contacts;
       sliding += f.sliding;
       max_wall_ratio = std::max(max_wall_ratio, overlap / r[i]);
-      ov[i] = std::max(ov[i], 0.5 * overlap / r[i]);
+      ovi = std::max(ovi, 0.5 * overlap / r[i]);
     }
+    fx[i] = fxi;
+    fy[i] = fyi;
+    tq[i] = tqi;
+    ov[i] = ovi;
   }
-
   clock.lap(Phase::Contacts);
+
   diag_.max_overlap_ratio = max_ratio;
   diag_.max_wall_overlap_ratio = max_wall_ratio;
   diag_.pair_contacts = contacts;
   diag_.wall_contacts = wall_contacts;
   diag_.sliding_contacts = sliding;
+  if (max_ratio > overlap_limit_) {
+    // The first pair (in list order) with the largest overlap, for the message.
+    for (std::int64_t k = 0; k < m; ++k)
+      if (lratio[k] == max_ratio) {
+        worst_pair_i_ = li[k];
+        worst_pair_j_ = lj[k];
+        break;
+      }
+  }
 }
 
 void DemSolver::evaluate_forces_dispatch(double dtau) {
@@ -227,7 +262,6 @@ void DemSolver::evaluate_forces_dispatch(double dtau) {
 
 void DemSolver::step() {
   Particles& P = state_.particles;
-  const std::size_t n = P.size();
   const double h = dt_;
   integration_start_ = PhaseTimes::Clock::now();
   if (frozen_) {  // a fixed bed: the clock runs, nothing moves
@@ -243,15 +277,15 @@ void DemSolver::step() {
       // Eqs 24-28 with alpha = 1/2, beta = 1/4: predict, evaluate forces at the prediction,
       // correct with the new acceleration.
       const double hh4 = 0.25 * h * h;
-      for (std::size_t i = 0; i < n; ++i) {
+      for_particles([&](std::size_t i) {
         P.x[i] += h * P.vx[i] + hh4 * P.ax[i];
         P.y[i] += h * P.vy[i] + hh4 * P.ay[i];
         P.vx[i] += 0.5 * h * P.ax[i];
         P.vy[i] += 0.5 * h * P.ay[i];
         P.w[i] += 0.5 * h * P.aw[i];
-      }
+      });
       evaluate_forces_dispatch(h);
-      for (std::size_t i = 0; i < n; ++i) {
+      for_particles([&](std::size_t i) {
         const double ax = P.fx[i] * P.inv_mass[i], ay = P.fy[i] * P.inv_mass[i];
         const double aw = P.torque[i] * P.inv_inertia[i];
         P.vx[i] += 0.5 * h * ax;
@@ -262,32 +296,32 @@ void DemSolver::step() {
         P.ax[i] = ax;
         P.ay[i] = ay;
         P.aw[i] = aw;
-      }
+      });
       break;
     }
     case Integrator::VelocityVerlet: {
       // Kick half, drift, forces with the half-step velocity, kick half.
-      for (std::size_t i = 0; i < n; ++i) {
+      for_particles([&](std::size_t i) {
         P.vx[i] += 0.5 * h * P.ax[i];
         P.vy[i] += 0.5 * h * P.ay[i];
         P.w[i] += 0.5 * h * P.aw[i];
         P.x[i] += h * P.vx[i];
         P.y[i] += h * P.vy[i];
-      }
+      });
       evaluate_forces_dispatch(h);
-      for (std::size_t i = 0; i < n; ++i) {
+      for_particles([&](std::size_t i) {
         P.ax[i] = P.fx[i] * P.inv_mass[i];
         P.ay[i] = P.fy[i] * P.inv_mass[i];
         P.aw[i] = P.torque[i] * P.inv_inertia[i];
         P.vx[i] += 0.5 * h * P.ax[i];
         P.vy[i] += 0.5 * h * P.ay[i];
         P.w[i] += 0.5 * h * P.aw[i];
-      }
+      });
       break;
     }
     case Integrator::SymplecticEuler: {
       evaluate_forces_dispatch(h);
-      for (std::size_t i = 0; i < n; ++i) {
+      for_particles([&](std::size_t i) {
         P.ax[i] = P.fx[i] * P.inv_mass[i];
         P.ay[i] = P.fy[i] * P.inv_mass[i];
         P.aw[i] = P.torque[i] * P.inv_inertia[i];
@@ -296,7 +330,7 @@ void DemSolver::step() {
         P.w[i] += h * P.aw[i];
         P.x[i] += h * P.vx[i];
         P.y[i] += h * P.vy[i];
-      }
+      });
       break;
     }
   }
@@ -358,15 +392,14 @@ std::uint64_t DemSolver::configuration_hash() const {
   Fnv1a h;
   const Particles& P = state_.particles;
   for (const auto* v : {&P.x, &P.y, &P.vx, &P.vy, &P.w, &P.ax, &P.ay, &P.aw}) h.values(*v);
-  const PairHistory& ph = state_.pairs;
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    h.value(ph.count[i]);
-    for (int k = 0; k < ph.count[i]; ++k) {
-      const std::size_t s = i * PairHistory::kSlots + k;
-      h.value(ph.partner[s]);
-      h.value(ph.dn[s]);
-      h.value(ph.dt[s]);
-    }
+  // The touching pairs in (i, j) order: the same whatever the skin or the rebuild times.
+  const NeighbourList& L = list_;
+  for (std::size_t k = 0; k < L.size(); ++k) {
+    if (!L.touching[k]) continue;
+    h.value(L.i[k]);
+    h.value(L.j[k]);
+    h.value(L.dn[k]);
+    h.value(L.dt[k]);
   }
   h.values(state_.walls.active);
   h.values(state_.walls.dn);

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "core/phase_timer.hpp"
-#include "dem/cell_grid.hpp"
 #include "dem/contact_history.hpp"
 #include "dem/contact_law.hpp"
+#include "dem/neighbour_list.hpp"
 #include "dem/particles.hpp"
 #include "dem/walls.hpp"
 #include "scene/settings.hpp"
@@ -20,10 +20,12 @@ namespace fluidbed {
 enum class Integrator { Newmark, VelocityVerlet, SymplecticEuler };
 Integrator parse_integrator(const std::string& name);
 
-// Everything that defines where a run is: saved and loaded bit-exactly.
+// Everything that defines where a run is: saved and loaded bit-exactly. The pair history lives
+// in the solver's neighbour list while it runs; `pairs` holds it only when exported (state files)
+// or about to be imported (set_state).
 struct DemState {
   Particles particles;
-  PairHistory pairs;
+  PairContacts pairs;
   WallHistory walls;
   double time = 0.0;       // s
   std::int64_t step = 0;
@@ -47,8 +49,14 @@ class DemSolver {
   // One time step of dt. Throws SimulationFailure when the state stops making sense.
   void step();
 
+  // The live state; its `pairs` member is not kept current while running (see exported_state).
   const DemState& state() const { return state_; }
   DemState& state() { return state_; }
+  // A complete copy, pair history included (for state files).
+  DemState exported_state() const;
+  // Threads used inside a step (1: none); results are the same bits for any count.
+  int threads() const { return threads_; }
+  const NeighbourList& neighbours() const { return list_; }
   const Particles& particles() const { return state_.particles; }
   Particles& particles() { return state_.particles; }
   double time() const { return state_.time; }
@@ -60,7 +68,7 @@ class DemSolver {
   // 1 - L / (R_i + R_j); walls: 1 - distance / R_i, halved to the same scale).
   const std::vector<double>& particle_overlap() const { return overlap_; }
 
-  // Replaces the state (a loaded file); particle count must match the scene's.
+  // Replaces the state (a loaded file, its pair history included); the particle count must match.
   void set_state(DemState s);
   // Time spent per phase since construction (or reset), for the benchmark's split.
   PhaseTimes& phase_times() const { return times_; }
@@ -77,10 +85,12 @@ class DemSolver {
   void finish_step();
   [[noreturn]] void fail(const std::string& what) const;
 
+  template <class F>
+  void for_particles(F&& f);
+
   DemState state_;
-  PairHistory previous_;  // scratch: last step's pair history while the new one is written
+  NeighbourList list_;
   std::vector<Wall> walls_;
-  CellGrid grid_;
   ContactParams params_;
   Integrator integrator_;
   bool incremental_;
@@ -89,6 +99,8 @@ class DemSolver {
   double gravity_;
   double width_, height_;
   double overlap_limit_;
+  int threads_ = 1;
+  bool parallel_ = false;  // threads_ > 1 and enough particles to pay for a fork
   StepDiagnostics diag_;
   std::vector<double> overlap_;
   mutable PhaseTimes times_;

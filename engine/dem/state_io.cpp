@@ -12,7 +12,7 @@ namespace fluidbed {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'B', 'S', 'T', 'A', 'T', 'E'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;
 
 }  // namespace
 
@@ -21,7 +21,6 @@ void write_state(std::ostream& out, const DemState& s) {
   put(out, kVersion);
   const auto& P = s.particles;
   put(out, static_cast<std::uint64_t>(P.size()));
-  put(out, static_cast<std::int32_t>(PairHistory::kSlots));
   put(out, static_cast<std::int32_t>(s.walls.walls));
   put(out, s.time);
   put(out, s.step);
@@ -29,8 +28,8 @@ void write_state(std::ostream& out, const DemState& s) {
                         &P.torque, &P.ext_fx, &P.ext_fy, &P.radius, &P.mass, &P.inv_mass,
                         &P.inv_inertia})
     put_vec(out, *v);
-  put_vec(out, s.pairs.count);
-  put_vec(out, s.pairs.partner);
+  put_vec(out, s.pairs.i);
+  put_vec(out, s.pairs.j);
   put_vec(out, s.pairs.dn);
   put_vec(out, s.pairs.dt);
   put_vec(out, s.walls.active);
@@ -50,8 +49,6 @@ DemState read_state(std::istream& in, const std::string& origin) {
   const auto count = src.get<std::uint64_t>();
   if (count == 0 || count > (1ULL << 31)) src.fail("inconsistent (count)");
   const auto n = static_cast<std::int64_t>(count);
-  if (src.get<std::int32_t>() != PairHistory::kSlots)
-    throw InputError(origin + ": state file has a different contact-slot layout");
   const auto walls = src.get<std::int32_t>();
   if (walls < 0 || walls > 16) throw InputError(origin + ": state file is inconsistent (walls)");
   s.time = src.get<double>();
@@ -60,22 +57,20 @@ DemState read_state(std::istream& in, const std::string& origin) {
   for (auto* v : {&P.x, &P.y, &P.vx, &P.vy, &P.w, &P.ax, &P.ay, &P.aw, &P.fx, &P.fy, &P.torque,
                   &P.ext_fx, &P.ext_fy, &P.radius, &P.mass, &P.inv_mass, &P.inv_inertia})
     src.get_vec(*v, n);
-  src.get_vec(s.pairs.count, n);
-  src.get_vec(s.pairs.partner, n * PairHistory::kSlots);
-  src.get_vec(s.pairs.dn, n * PairHistory::kSlots);
-  src.get_vec(s.pairs.dt, n * PairHistory::kSlots);
+  src.get_vec(s.pairs.i);
+  src.get_vec(s.pairs.j, static_cast<std::int64_t>(s.pairs.i.size()));
+  src.get_vec(s.pairs.dn, static_cast<std::int64_t>(s.pairs.i.size()));
+  src.get_vec(s.pairs.dt, static_cast<std::int64_t>(s.pairs.i.size()));
   s.walls.walls = walls;
   src.get_vec(s.walls.active, n * walls);
   src.get_vec(s.walls.dn, n * walls);
   src.get_vec(s.walls.dt, n * walls);
-  for (std::size_t i = 0; i < count; ++i) {
-    if (s.pairs.count[i] > PairHistory::kSlots)
-      throw InputError(origin + ": state file is inconsistent (contact count)");
-    for (int k = 0; k < s.pairs.count[i]; ++k) {
-      const auto j = s.pairs.partner[i * PairHistory::kSlots + k];
-      if (j <= static_cast<std::int32_t>(i) || j >= n)
-        throw InputError(origin + ": state file is inconsistent (contact partner)");
-    }
+  // Pairs: i < j, inside the particle range, sorted by (i, j).
+  for (std::size_t k = 0; k < s.pairs.size(); ++k) {
+    const auto i = s.pairs.i[k], j = s.pairs.j[k];
+    const bool ordered = k == 0 || s.pairs.i[k - 1] < i || (s.pairs.i[k - 1] == i && s.pairs.j[k - 1] < j);
+    if (i < 0 || i >= j || j >= n || !ordered)
+      throw InputError(origin + ": state file is inconsistent (contact pairs)");
   }
   return s;
 }

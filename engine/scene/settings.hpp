@@ -53,6 +53,10 @@ struct ContactSettings {
   // "incremental": the paper's eqs 13-17 (displacements accumulated from increments, the first
   // one over the backward-projected time since touching); "geometric": delta_n = R_i + R_j - L.
   std::string displacement = "incremental";
+  // Neighbour-list skin as a fraction of the largest diameter: candidate pairs are kept while
+  // closer than R_i + R_j + skin, and the list is rebuilt when a particle has moved half of it.
+  // Only the speed depends on it, never the results.
+  double skin = 0.2;
 };
 
 struct TimeSettings {
@@ -112,6 +116,7 @@ struct Settings {
   CouplingSettings coupling;
   DiagnosticsSettings diagnostics;
   std::string source_dir = ".";  // folder of the scene file, for relative paths (not a TOML key)
+  int threads = 0;  // threads inside a step, 0: one per core (--threads; not a TOML key)
 };
 
 // v(key, field, unit) for every field of a section, in file order.
@@ -153,6 +158,7 @@ void visit_fields(ContactSettings& s, V&& v) {
   v("tangential_damping_ratio", s.tangential_damping_ratio, "");
   v("friction", s.friction, "");
   v("displacement", s.displacement, "");
+  v("skin", s.skin, "");
 }
 template <class V>
 void visit_fields(TimeSettings& s, V&& v) {

@@ -73,6 +73,7 @@ void validate(const Settings& s) {
   non_negative("contact.damping", c.damping);
   non_negative("contact.tangential_damping_ratio", c.tangential_damping_ratio);
   non_negative("contact.friction", c.friction);
+  non_negative("contact.skin", c.skin);
   one_of("contact.displacement", c.displacement, {"incremental", "geometric"});
 
   positive("time.dt", s.time.dt);

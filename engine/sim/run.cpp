@@ -104,6 +104,7 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
       result.rows.push_back(pending);
       pending = TimeseriesRow{};
     }
+    if (options.on_step) options.on_step(sim);
     if (options.progress && (sim.steps() & 255) == 0) {
       const double w = wall_now();
       if (w >= next_progress) {

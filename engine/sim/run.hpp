@@ -30,6 +30,9 @@ struct RunOptions {
   // Called about every progress_interval wall seconds with the simulation and the wall time so far.
   std::function<void(const Simulation&, double)> progress;
   double progress_interval = 0.5;  // s
+  // Called after every step with the simulation (read only): frames, files and panels at exact
+  // simulated times. It must not change the run; its cost counts in the wall time.
+  std::function<void(const Simulation&)> on_step;
 };
 
 struct RunResult {

@@ -123,7 +123,7 @@ std::uint64_t Simulation::state_hash() const {
 
 void Simulation::save_state(const std::string& path) const {
   StateFile f;
-  f.dem = dem_.state();
+  f.dem = dem_.exported_state();
   if (gas_) {
     f.has_gas = true;
     f.gas = gas_->state();

@@ -1,0 +1,35 @@
+#pragma once
+// ParaView-readable files of snapshots (VTK XML, no GL, no VTK library): the particles as
+// PolyData (.vtp: points at the centres with velocity, force, torque, spin, overlap, radius,
+// initial height and id), the gas cells as ImageData (.vti: velocity, porosity, pressure per
+// cell), and one .pvd collection per kind that ParaView opens as a time series. Arrays are
+// inline base64 binary (a UInt32 byte count, then little-endian values), Float32 except ids.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/snapshot.hpp"
+
+namespace fluidbed {
+
+void write_particles_vtp(const std::string& path, const Snapshot& s);
+// Nothing is written for a snapshot without gas.
+void write_gas_vti(const std::string& path, const Snapshot& s);
+
+// A time series in a folder: particles_NNNNNN.vtp and gas_NNNNNN.vti per snapshot, and
+// particles.pvd and gas.pvd listing them with their times. The collections are rewritten after
+// every snapshot (each complete or absent), so a run stopped half-way leaves a readable series.
+class VtkSeries {
+ public:
+  explicit VtkSeries(std::string dir);  // creates the folder; InputError if it cannot
+  void write(const Snapshot& s);
+  std::size_t size() const { return times_.size(); }
+
+ private:
+  void write_collection(const std::string& name, const std::string& ext) const;
+  std::string dir_;
+  std::vector<double> times_;
+  bool gas_ = false;
+};
+
+}  // namespace fluidbed
