@@ -6,6 +6,7 @@
 
 #include "cfd/gas_solver.hpp"
 #include "core/errors.hpp"
+#include "core/threads.hpp"
 #include "coupling/drag.hpp"
 #include "coupling/porosity.hpp"
 
@@ -22,11 +23,26 @@ Coupler::Coupler(const GasGrid& grid, const Settings& s, std::size_t particles)
       drag_y_(particles, 0.0),
       cell_(particles, 0),
       sum_fx_(static_cast<std::size_t>(grid.cells()), 0.0),
-      sum_fy_(static_cast<std::size_t>(grid.cells()), 0.0) {}
+      sum_fy_(static_cast<std::size_t>(grid.cells()), 0.0) {
+  threads_ = resolve_threads(s.threads);
+  parallel_ = threads_ > 1 && particles >= 256;
+  shares_.resize(particles);
+  const auto cells = static_cast<std::size_t>(grid.cells());
+  for (auto* v : {&cell_ux_, &cell_uy_, &cell_gx_, &cell_gy_, &ln_eps_}) v->assign(cells, 0.0);
+}
 
 const std::vector<double>& Coupler::compute_porosity(const Particles& p, double time) {
+  // Each sphere's shares in parallel (the closed forms are the work), then added up per cell in
+  // particle order, so the porosity is the same bits for any thread count.
+  const auto n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    particle_volume_shares(grid_, p.x[i], p.y[i], p.radius[i], shares_[i]);
+  }
   std::fill(solid_.begin(), solid_.end(), 0.0);
-  for (std::size_t i = 0; i < p.size(); ++i) add_particle_volume(grid_, p.x[i], p.y[i], p.radius[i], solid_);
+  for (const VolumeShares& sh : shares_)
+    for (int q = 0; q < sh.count; ++q) solid_[sh.cell[q]] += sh.volume[q];
   porosity_from_solid(grid_, solid_, eps_);
   for (std::size_t c = 0; c < eps_.size(); ++c) {
     if (!(eps_[c] > 0.0 && eps_[c] <= 1.0 + 1e-12)) {
@@ -39,24 +55,35 @@ const std::vector<double>& Coupler::compute_porosity(const Particles& p, double 
   return eps_;
 }
 
-void Coupler::compute_fluid_forces(Particles& p, const GasSolver& gas) {
+void Coupler::refresh_cells(const GasSolver& gas) {
+  const int cells = grid_.cells();
+  for (int c = 0; c < cells; ++c) {
+    gas.cell_velocity(c, cell_ux_[c], cell_uy_[c]);
+    gas.pressure_gradient(c, cell_gx_[c], cell_gy_[c]);
+    ln_eps_[c] = std::log(eps_[c]);
+  }
+}
+
+void Coupler::compute_fluid_forces(Particles& p) {
   constexpr double kPi = 3.14159265358979323846;
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  const auto n = static_cast<std::int64_t>(p.size());
+  const bool pgf = pressure_gradient_force_;
+#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
     const int c = grid_.cell_of(p.x[i], p.y[i]);
     cell_[i] = c;
-    double ux, uy;
-    gas.cell_velocity(c, ux, uy);
     const double R = p.radius[i];
-    const DragForce f = di_felice_drag(R, rho_f_, mu_f_, eps_[c], ux, uy, p.vx[i], p.vy[i]);
-    drag_x_[i] = f.fx;
-    drag_y_[i] = f.fy;
-    double fx = f.fx, fy = f.fy;
-    if (pressure_gradient_force_) {
-      double gx, gy;
-      gas.pressure_gradient(c, gx, gy);
+    const double sx = cell_ux_[c] - p.vx[i], sy = cell_uy_[c] - p.vy[i];
+    const double beta = di_felice_beta_ln(R, rho_f_, mu_f_, eps_[c], ln_eps_[c],
+                                          std::sqrt(sx * sx + sy * sy));
+    drag_x_[i] = beta * sx;
+    drag_y_[i] = beta * sy;
+    double fx = drag_x_[i], fy = drag_y_[i];
+    if (pgf) {
       const double v = 4.0 / 3.0 * kPi * R * R * R;
-      fx -= v * gx;
-      fy -= v * gy;
+      fx -= v * cell_gx_[c];
+      fy -= v * cell_gy_[c];
     }
     p.ext_fx[i] = fx;
     p.ext_fy[i] = fy;

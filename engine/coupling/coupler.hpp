@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cfd/gas_grid.hpp"
+#include "coupling/porosity.hpp"
 #include "dem/particles.hpp"
 #include "scene/settings.hpp"
 
@@ -31,9 +32,12 @@ class Coupler {
   const std::vector<double>& compute_porosity(const Particles& p, double time);
   const std::vector<double>& porosity() const { return eps_; }
 
-  // Eqs 8-12 (and -V grad p for model A) on every particle from the current gas field and the
-  // particles' current velocities, written to Particles::ext_fx/ext_fy for the next step.
-  void compute_fluid_forces(Particles& p, const GasSolver& gas);
+  // Reads the gas field into per-cell arrays (velocity, pressure gradient, ln eps); call after
+  // every gas step and whenever the gas state is replaced.
+  void refresh_cells(const GasSolver& gas);
+  // Eqs 8-12 (and -V grad p for model A) on every particle from the gas field read by the last
+  // refresh_cells and the particles' current velocities, written to Particles::ext_fx/ext_fy.
+  void compute_fluid_forces(Particles& p);
 
   // Adds the drag of the step just taken to the per-cell sums (call after each particle step).
   void accumulate_drag(const Particles& p);
@@ -53,6 +57,10 @@ class Coupler {
   GasGrid grid_;
   double rho_f_, mu_f_;
   bool pressure_gradient_force_;
+  int threads_ = 1;
+  bool parallel_ = false;
+  std::vector<VolumeShares> shares_;  // per particle, from the last porosity
+  std::vector<double> cell_ux_, cell_uy_, cell_gx_, cell_gy_, ln_eps_;  // per cell
   std::vector<double> solid_, eps_;
   std::vector<double> drag_x_, drag_y_;  // N, per particle, from the last compute_fluid_forces
   std::vector<int> cell_;                // cell of each particle's centre at that time

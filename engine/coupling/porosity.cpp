@@ -49,8 +49,7 @@ double sphere_quadrant_volume(double R, double a, double b) {
   return sphere_volume(R) - sphere_cap_volume(R, -a) - sphere_cap_volume(R, -b);
 }
 
-void add_particle_volume(const GasGrid& g, double x, double y, double R,
-                         std::vector<double>& solid_volume) {
+int particle_volume_shares(const GasGrid& g, double x, double y, double R, VolumeShares& out) {
   const double dx = g.dx();
   const double dy = g.dy();
   const int i = g.column(x);
@@ -86,32 +85,49 @@ void add_particle_volume(const GasGrid& g, double x, double y, double R,
   }
 
   if (di == 0 && dj == 0) {  // the usual case: the sphere lies inside one cell
-    solid_volume[c] += volume;
-    return;
+    out.cell[0] = c;
+    out.volume[0] = volume;
+    return out.count = 1;
   }
   const int cx = c + di;         // the neighbour across the vertical line
   const int cy = c + dj * g.nx;  // the neighbour across the horizontal line
   if (dj == 0) {
     const double vx = sphere_cap_volume(R, ax);
-    solid_volume[cx] += vx;
-    solid_volume[c] += volume - vx;
-    return;
+    out.cell[0] = cx;
+    out.volume[0] = vx;
+    out.cell[1] = c;
+    out.volume[1] = volume - vx;
+    return out.count = 2;
   }
   if (di == 0) {
     const double vy = sphere_cap_volume(R, ay);
-    solid_volume[cy] += vy;
-    solid_volume[c] += volume - vy;
-    return;
+    out.cell[0] = cy;
+    out.volume[0] = vy;
+    out.cell[1] = c;
+    out.volume[1] = volume - vy;
+    return out.count = 2;
   }
   // Across a corner: the diagonal cell gets the double cap, each side neighbour its cap less the
   // double cap, the centre's cell the rest (inclusion-exclusion: the four sum to the sphere).
   const double vx = sphere_cap_volume(R, ax);
   const double vy = sphere_cap_volume(R, ay);
   const double vxy = sphere_quadrant_volume(R, ax, ay);
-  solid_volume[cx + dj * g.nx] += vxy;
-  solid_volume[cx] += vx - vxy;
-  solid_volume[cy] += vy - vxy;
-  solid_volume[c] += volume - vx - vy + vxy;
+  out.cell[0] = cx + dj * g.nx;
+  out.volume[0] = vxy;
+  out.cell[1] = cx;
+  out.volume[1] = vx - vxy;
+  out.cell[2] = cy;
+  out.volume[2] = vy - vxy;
+  out.cell[3] = c;
+  out.volume[3] = volume - vx - vy + vxy;
+  return out.count = 4;
+}
+
+void add_particle_volume(const GasGrid& g, double x, double y, double R,
+                         std::vector<double>& solid_volume) {
+  VolumeShares shares;
+  particle_volume_shares(g, x, y, R, shares);
+  for (int k = 0; k < shares.count; ++k) solid_volume[shares.cell[k]] += shares.volume[k];
 }
 
 void porosity_from_solid(const GasGrid& g, const std::vector<double>& solid_volume,

@@ -32,6 +32,16 @@ inline bool sphere_fits_cells(const GasGrid& g, double R) {
   return 2.0 * R <= g.dx() && 2.0 * R <= g.dy();
 }
 
+// The shares of one sphere's volume in the cells it touches (at most four).
+struct VolumeShares {
+  int count = 0;
+  int cell[4] = {0, 0, 0, 0};
+  double volume[4] = {0.0, 0.0, 0.0, 0.0};  // m^3
+};
+
+// Fills `out` with the sphere's shares (the split add_particle_volume uses); returns the count.
+int particle_volume_shares(const GasGrid& g, double x, double y, double R, VolumeShares& out);
+
 // Adds the volume of the sphere (radius R, centre (x, y)) to each cell it touches: 1, 2 or 4
 // cells, split by the nearer vertical and horizontal line of the cell holding the centre
 // (precondition: sphere_fits_cells). A line that is an outer wall does not split: a part of the

@@ -32,6 +32,8 @@ SweepPoint run_point(const Settings& scene, const SweepOptions& o, const std::st
   pt.branch = branch;
   pt.u = u;
   Settings s = scene;
+  // Runs side by side take a core each; a lone run may use them all.
+  if (o.threads > 1) s.threads = 1;
   s.inlet.superficial_velocity = u;
   s.time.end = o.run_time;
   s.diagnostics.averaging_start = o.averaging_start;

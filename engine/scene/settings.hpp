@@ -41,6 +41,10 @@ struct ParticleSettings {
   double spin = 0.0;         // rad/s about z
   std::string state_file;    // "state" placement; relative paths are relative to the scene file
   double packing_time = 0.8; // s, "packed" placement: how long the lattice start falls
+  // "packed" placement: a scene whose settings make the packing instead of this one's (e.g. a
+  // frictionless, undamped bed that never settles packs as the realistic one). Relative paths
+  // are relative to this scene file. Empty: this scene.
+  std::string packing_scene;
   bool frozen = false;       // held in place (a fixed bed): the gas flows through, nothing moves
 };
 
@@ -116,7 +120,10 @@ struct Settings {
   CouplingSettings coupling;
   DiagnosticsSettings diagnostics;
   std::string source_dir = ".";  // folder of the scene file, for relative paths (not a TOML key)
-  int threads = 0;  // threads inside a step, 0: one per core (--threads; not a TOML key)
+  // Threads inside a step (not a TOML key: the command line's --threads, default one per core).
+  // 0: one per core. The library default is 1 so that tests and parallel sweeps never
+  // oversubscribe the cores; results are the same bits for any count.
+  int threads = 1;
 };
 
 // v(key, field, unit) for every field of a section, in file order.
@@ -148,6 +155,7 @@ void visit_fields(ParticleSettings& s, V&& v) {
   v("spin", s.spin, "rad/s");
   v("state_file", s.state_file, "");
   v("packing_time", s.packing_time, "s");
+  v("packing_scene", s.packing_scene, "");
   v("frozen", s.frozen, "");
 }
 template <class V>

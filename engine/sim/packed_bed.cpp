@@ -8,6 +8,7 @@
 #include "core/errors.hpp"
 #include "core/hash.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/placement.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed {
@@ -39,6 +40,18 @@ std::string cache_dir() {
 std::string packed_bed_state(const Settings& bed,
                              const std::function<void(const std::string&)>& notify) {
   namespace fs = std::filesystem;
+  if (!bed.particles.packing_scene.empty()) {
+    // Another scene packs the bed: its own packing, cached under its own settings.
+    Settings other = load_scene(scene_path(bed, bed.particles.packing_scene));
+    other.threads = bed.threads;
+    if (other.particles.count != bed.particles.count ||
+        other.particles.diameter != bed.particles.diameter)
+      throw InputError("particles.packing_scene " + bed.particles.packing_scene +
+                       " packs different particles (count or diameter) than this scene");
+    other.particles.packing_scene.clear();
+    other.particles.packing_time = bed.particles.packing_time;
+    return packed_bed_state(other, notify);
+  }
   const Settings packing = packing_settings_for(bed);
   // The key is every setting of the packing run, so a changed particle or contact value packs anew.
   // The model version goes in too: a change to the physics code that moves results bumps it.

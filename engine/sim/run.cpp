@@ -10,6 +10,7 @@
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "experiments/bounce_tracker.hpp"
+#include "experiments/cycles.hpp"
 #include "experiments/packing_metrics.hpp"
 
 namespace fluidbed {
@@ -163,6 +164,19 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
     j["mass_residual_max"] = residual_max;
     j["max_cfl"] = cfl_max;
     j["third_law_error_max"] = third_law_max;
+    // How regular dp is after start-up (Figs 16-17): dominant period and cycle-length spread.
+    std::vector<double> ts, dps;
+    for (const auto& row : result.rows)
+      if (row.t > startup) {
+        ts.push_back(row.t);
+        dps.push_back(row.dp);
+      }
+    const CycleStats cyc = analyse_cycles(ts, dps);
+    j["dp_dominant_period_s"] = cyc.ok ? nlohmann::json(cyc.dominant_period) : nlohmann::json(nullptr);
+    j["dp_dominant_power_share"] = cyc.dominant_power_share;
+    j["dp_cycles"] = cyc.cycles;
+    j["dp_cycle_length_mean_s"] = cyc.cycle_mean;
+    j["dp_cycle_length_cv"] = cyc.cycle_cv;
   }
   j["bed_weight_per_area_pa"] = mass * s.physics.gravity / (s.domain.width * s.domain.thickness);
   j["max_overlap_ratio"] = max_overlap;

@@ -66,7 +66,8 @@ Simulation::Simulation(const Settings& s)
   coupler_ = std::make_unique<Coupler>(grid, s, particle_count());
   Particles& p = dem_.particles();
   gas_->set_porosity(coupler_->compute_porosity(p, time()));
-  coupler_->compute_fluid_forces(p, *gas_);
+  coupler_->refresh_cells(*gas_);
+  coupler_->compute_fluid_forces(p);
   // A fresh start has no carried acceleration beyond gravity: add the gas's share to it.
   if (s.particles.placement != "state" && s.particles.placement != "packed") {
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -90,7 +91,7 @@ void Simulation::step() {
   if (++since_gas_step_ >= settings_.coupling.particle_steps_per_gas_step) {
     gas_step(clock);
   }
-  coupler_->compute_fluid_forces(p, *gas_);  // for the next step
+  coupler_->compute_fluid_forces(p);  // for the next step
   clock.lap(Phase::Coupling);
 }
 
@@ -103,6 +104,7 @@ void Simulation::gas_step(PhaseClock& clock) {
   clock.lap(Phase::Coupling);
   d.gas = gas_->step(dt, eps, fx_, fy_);
   clock.lap(Phase::Gas);
+  coupler_->refresh_cells(*gas_);
   ++d.gas_steps;
   gas_->force_on_gas(d.gas_force_x, d.gas_force_y);
   double wx = 0.0, wy = 0.0;
@@ -143,6 +145,7 @@ void Simulation::load_state(const std::string& path) {
     gas_->set_state(f.gas);
     since_gas_step_ = f.since_gas_step;
     coupler_->restore(f.coupling, particle_count());
+    coupler_->refresh_cells(*gas_);
   }
 }
 
