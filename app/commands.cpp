@@ -6,9 +6,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <memory>
 
 #include "core/errors.hpp"
+#include "frame_output.hpp"
+#include "plots.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/run.hpp"
 
@@ -28,14 +32,48 @@ void print_progress(const Simulation& sim, double wall, double until) {
   std::fflush(stderr);
 }
 
-RunResult run_with_progress(Simulation& sim, double until) {
+RunResult run_with_progress(Simulation& sim, double until,
+                            std::function<void(const Simulation&)> on_step = {}) {
   RunOptions opt;
   opt.until = until;
+  opt.on_step = std::move(on_step);
   const bool terminal = isatty(STDERR_FILENO) != 0;
   if (terminal) opt.progress = [until](const Simulation& s, double w) { print_progress(s, w, until); };
   RunResult r = run_simulation(sim, opt);
   if (terminal) std::fprintf(stderr, "\n");
   return r;
+}
+
+std::vector<int> parse_ids(const std::string& list, std::size_t count) {
+  std::vector<int> ids;
+  std::size_t pos = 0;
+  while (pos <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', pos), list.size());
+    const std::string item = list.substr(pos, comma - pos);
+    char* end = nullptr;
+    const long v = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || *end != '\0' || v < 0 || static_cast<std::size_t>(v) >= count)
+      throw InputError("--track: \"" + item + "\" is not a particle id (0 to " +
+                       std::to_string(count - 1) + ")");
+    ids.push_back(static_cast<int>(v));
+    pos = comma + 1;
+  }
+  return ids;
+}
+
+// Peak resident memory of this process (kB), from /proc (0 where unavailable).
+long peak_memory_kb() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      long kb = 0;
+      status >> kb;
+      return kb;
+    }
+    status.ignore(1 << 20, '\n');
+  }
+  return 0;
 }
 
 }  // namespace
@@ -46,11 +84,35 @@ std::string asset_dir() {
 }
 
 int run_command(const RunArgs& a) {
-  const Settings s = load_scene(a.scene, a.overrides);
+  Settings s = load_scene(a.scene, a.overrides);
+  s.threads = a.threads;
   const std::string out = a.out.empty() ? default_out(a.scene) : a.out;
   Simulation sim(s);
+  std::unique_ptr<TrajectoryRecorder> tracks;
+  if (a.plots) {
+    std::vector<int> ids;
+    if (a.track.empty()) {
+      ids = nearest_particles(sim.dem().particles(), jet_region_points(s.domain.width));
+    } else {
+      ids = parse_ids(a.track, sim.particle_count());
+    }
+    tracks = std::make_unique<TrajectoryRecorder>(ids, s.diagnostics.output_interval, s.time.dt);
+  }
   const double until = a.until >= 0.0 ? a.until : s.time.end;
-  const RunResult r = run_with_progress(sim, until);
+  // Frames, video, montage, VTK: snapshots at exact times, drawn and written by a worker thread.
+  std::unique_ptr<FrameOutput> pictures;
+  if (const FrameOptions fo = frame_options(a.output, asset_dir()); fo.any()) {
+    pictures = std::make_unique<FrameOutput>(out, fo, sim, until);
+    pictures->observe(sim);  // the starting state, when it is an output time
+  }
+  std::function<void(const Simulation&)> on_step;
+  if (pictures || tracks)
+    on_step = [&](const Simulation& x) {
+      if (pictures) pictures->observe(x);
+      if (tracks) tracks->observe(x);
+    };
+  const RunResult r = run_with_progress(sim, until, on_step);
+  const FrameStats picture_stats = pictures ? pictures->finish() : FrameStats{};
   write_run_outputs(out, r);
   {
     std::ofstream scene_out(std::filesystem::path(out) / "scene.toml");
@@ -63,16 +125,29 @@ int run_command(const RunArgs& a) {
               sim.particle_count(), sim.time(), r.summary["wall_time_s"].get<double>(),
               r.summary["particle_steps_per_s"].get<double>());
   std::printf("wrote %s/summary.json and %s/timeseries.csv\n", out.c_str(), out.c_str());
+  if (pictures) report_frame_output(out, a.output, picture_stats, r.summary["wall_time_s"].get<double>());
+  if (tracks) {
+    const auto files = plot_run(out, r, tracks->tracks(), s.domain.width, s.domain.height, sim.has_gas());
+    for (const auto& f : files) std::printf("wrote %s\n", f.c_str());
+  }
   return 0;
 }
 
 int bench_command(const RunArgs& a) {
   const std::string scene = a.scene.empty() ? asset_dir() + "/scenes/packing.toml" : a.scene;
-  const Settings s = load_scene(scene, a.overrides);
+  Settings s = load_scene(scene, a.overrides);
+  s.threads = a.threads;
   Simulation sim(s);
   const double until = a.until >= 0.0 ? a.until : s.time.end;
   const RunResult r = run_with_progress(sim, until);
   const auto& j = r.summary;
+  const PhaseTimes& times = sim.dem().phase_times();
+  nlohmann::json split = nlohmann::json::object();
+  const double wall = j["wall_time_s"].get<double>();
+  for (int k = 0; k < static_cast<int>(Phase::Count); ++k) {
+    const double sec = times.seconds(static_cast<Phase>(k));
+    split[phase_name(static_cast<Phase>(k))] = {{"seconds", sec}, {"share", wall > 0 ? sec / wall : 0.0}};
+  }
   nlohmann::json bench = {
       {"scene", s.scene.name},
       {"particles", j["particles"]},
@@ -84,7 +159,10 @@ int bench_command(const RunArgs& a) {
                                ? j["sim_time_s"].get<double>() / j["wall_time_s"].get<double>()
                                : 0.0},
       {"particle_steps_per_s", j["particle_steps_per_s"]},
-      {"threads", 1},
+      {"threads", sim.dem().threads()},
+      {"split", split},
+      {"peak_memory_kb", peak_memory_kb()},
+      {"neighbour_list_builds", sim.dem().neighbours().builds()},
   };
   const std::string out = a.out.empty() ? "out/bench" : a.out;
   std::filesystem::create_directories(out);
@@ -97,7 +175,15 @@ int bench_command(const RunArgs& a) {
   std::printf("wall s per sim s    %.4g\n", j["wall_s_per_sim_s"].get<double>());
   std::printf("sim s per wall s    %.4g\n", bench["sim_s_per_wall_s"].get<double>());
   std::printf("particle-steps/s    %.4g\n", j["particle_steps_per_s"].get<double>());
-  std::printf("threads             1\n");
+  std::printf("threads             %d\n", sim.dem().threads());
+  std::printf("peak memory         %.1f MB\n", static_cast<double>(peak_memory_kb()) / 1024.0);
+  std::printf("time split:\n");
+  for (int k = 0; k < static_cast<int>(Phase::Count); ++k) {
+    const double sec = times.seconds(static_cast<Phase>(k));
+    std::printf("  %-19s %8.3f s  %5.1f %%  %8.2f us/step\n", phase_name(static_cast<Phase>(k)), sec,
+                wall > 0 ? 100.0 * sec / wall : 0.0,
+                1e6 * sec / std::max(1.0, j["steps"].get<double>()));
+  }
   std::printf("wrote %s/bench.json\n", out.c_str());
   return 0;
 }

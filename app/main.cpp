@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "export_command.hpp"
 #include "core/errors.hpp"
 
 namespace {
@@ -15,6 +16,29 @@ void add_scene_options(CLI::App* cmd, fluidbed::app::RunArgs& a, bool scene_requ
       ->take_all()
       ->allow_extra_args(false);
   cmd->add_option("--until", a.until, "simulated time to reach, in seconds");
+  cmd->add_option("--threads", a.threads, "threads inside a step (default: one per core)")
+      ->check(CLI::NonNegativeNumber);
+}
+
+// Frames, video, montage and VTK files of `run` (see README.md, "Pictures and files").
+void add_output_options(CLI::App* cmd, fluidbed::app::OutputArgs& o) {
+  cmd->add_flag("--frames", o.frames, "write DIR/frames/*.png at every frame interval");
+  cmd->add_flag("--video", o.video, "write DIR/video.mp4 (ffmpeg, H.264)");
+  cmd->add_flag("--vtk", o.vtk, "write DIR/vtk/ (particles and gas, .pvd series for ParaView)");
+  cmd->add_option("--montage", o.montage, "write DIR/montage.png of these times: t1,t2,... (s)");
+  cmd->add_option("--frame-interval", o.frame_interval, "simulated seconds between frames (0.04)");
+  cmd->add_option("--frame-size", o.frame_size, "frame size WxH in pixels (1280x720)");
+  cmd->add_option("--colour", o.colour, "particle colour: speed, force, torque, overlap, height, fixed");
+  cmd->add_option("--colour-range", o.colour_range, "colour range MIN,MAX (the quantity's unit)");
+  cmd->add_flag("--gas-arrows,!--no-gas-arrows", o.gas_arrows, "gas velocity arrows (on)");
+  cmd->add_flag("--gas-arrow-colour", o.gas_arrow_colour, "colour gas arrows by speed");
+  cmd->add_flag("--particle-arrows", o.particle_arrows, "particle velocity arrows");
+  cmd->add_flag("--porosity-background", o.porosity_background, "porosity field behind particles");
+  cmd->add_flag("--dark", o.dark, "dark background");
+  cmd->add_option("--close-up", o.close_up,
+                  "frames: beside the bed, its lower FRACTION magnified (0.4; 0: none)");
+  cmd->add_option("--video-fps", o.video_fps, "video frames per second (25)");
+  cmd->add_option("--gl-backend", o.gl_backend, "GL context backend: osmesa, glfw (osmesa)");
 }
 
 }  // namespace
@@ -23,14 +47,48 @@ int main(int argc, char** argv) {
   CLI::App app{"fluidbed: a gas-fluidized bed of discrete particles and locally averaged gas"};
   app.require_subcommand(1);
   fluidbed::app::RunArgs run_args, bench_args;
+  fluidbed::app::SweepArgs sweep_args;
+  fluidbed::app::ReproduceArgs reproduce_args;
+  fluidbed::app::ExportArgs export_args;
 
   auto* run = app.add_subcommand("run", "run a scene and write summary.json and timeseries.csv");
   add_scene_options(run, run_args, true);
   run->add_option("--out", run_args.out, "output folder (default out/<scene name>)");
+  add_output_options(run, run_args.output);
+  run->add_flag("--plots", run_args.plots,
+                "write dp.png (Fig. 8), overlap.png (Fig. 15) and trajectory.png (Figs 12-13)");
+  run->add_option("--track", run_args.track,
+                  "particle ids to follow for --plots: 12,345 (default: two from the jet region)");
 
   auto* bench = app.add_subcommand("bench", "measure speed (default scene: packing)");
   add_scene_options(bench, bench_args, false);
   bench->add_option("--out", bench_args.out, "folder for bench.json (default out/bench)");
+
+  auto* sweep = app.add_subcommand("sweep", "the paper's velocity sweep (Fig. 6) and U_mf");
+  sweep->add_option("scene", sweep_args.scene, "scene file (TOML)")->required();
+  sweep->add_option("--set", sweep_args.overrides, "override a scene value: section.key=value")
+      ->take_all()
+      ->allow_extra_args(false);
+  sweep->add_option("--velocities", sweep_args.velocities,
+                    "superficial velocities in m/s: 0.5,1.0,... (default: 23 from 0.5 to 3.2)");
+  sweep->add_option("--run-time", sweep_args.run_time, "simulated seconds per velocity (1.5)");
+  sweep->add_option("--averaging-start", sweep_args.averaging_start,
+                    "seconds into each run where the mean (eq 30) starts (0.5)");
+  sweep->add_option("--threads", sweep_args.threads, "runs side by side (2)")->check(CLI::PositiveNumber);
+  sweep->add_option("--out", sweep_args.out, "output folder (default out/sweep)");
+
+  auto* reproduce = app.add_subcommand("reproduce", "every figure of the paper, with a report");
+  reproduce->add_option("--out", reproduce_args.out, "output folder (default out/reproduce)");
+  reproduce->add_flag("--quick", reproduce_args.quick, "shorter runs: every figure in minutes");
+  reproduce->add_option("--threads", reproduce_args.threads, "threads inside a step");
+
+  auto* exporter = app.add_subcommand("export", "write the scene for another code (LIGGGHTS)");
+  exporter->add_option("scene", export_args.scene, "scene file (TOML)")->required();
+  exporter->add_option("--set", export_args.overrides, "override a scene value: section.key=value")
+      ->take_all()
+      ->allow_extra_args(false);
+  exporter->add_option("--to", export_args.to, "target: liggghts")->required();
+  exporter->add_option("dir", export_args.dir, "folder to write")->required();
 
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
@@ -58,12 +116,19 @@ int main(int argc, char** argv) {
   try {
     if (*run) return fluidbed::app::run_command(run_args);
     if (*bench) return fluidbed::app::bench_command(bench_args);
+    if (*sweep) return fluidbed::app::sweep_command(sweep_args);
+    if (*reproduce) return fluidbed::app::reproduce_command(reproduce_args);
+    if (*exporter) return fluidbed::app::export_command(export_args);
   } catch (const fluidbed::InputError& e) {
     std::cerr << "fluidbed: error: " << e.what() << "\n";
     return 2;
   } catch (const fluidbed::SimulationFailure& e) {
     std::cerr << "fluidbed: the simulation failed: " << e.what() << "\n";
     return 3;
+  } catch (const std::runtime_error& e) {
+    // Pictures or files that could not be made (no GL context, ffmpeg failed).
+    std::cerr << "fluidbed: output failed: " << e.what() << "\n";
+    return 4;
   }
   return 2;
 }

@@ -11,6 +11,14 @@ PACKAGES=(
   libeigen3-dev         # sparse solvers for the gas pressure correction
   libgtest-dev libgmock-dev libbenchmark-dev
   libstb-dev fonts-dejavu-core
+  libosmesa6-dev        # offscreen GL (llvmpipe): frames and render tests without a display
+  zlib1g-dev            # PNG frames
+  libglfw3-dev          # windows (the viewer)
+  python3-glad          # generates the GL loader at build time
+  ffmpeg                # DIR/video.mp4; ffprobe in the render tests
+  xvfb xauth            # a virtual display: the window backend's test (xvfb-run)
+  python3-vtk9          # reads the VTK files back in the render tests (ParaView's readers)
+  liggghts              # the peer DEM code: `fluidbed export --to liggghts` decks are run in tests
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

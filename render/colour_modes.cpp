@@ -1,0 +1,72 @@
+#include "colour_modes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+
+namespace fluidbed::render {
+
+std::vector<std::string> colour_by_names() {
+  return {"speed", "force", "torque", "overlap", "height", "fixed"};
+}
+
+ColourBy parse_colour_by(const std::string& name) {
+  const auto names = colour_by_names();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<ColourBy>(i);
+  std::string known;
+  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  throw InputError("unknown colour mode '" + name + "' (known: " + known + ")");
+}
+
+std::string to_string(ColourBy c) { return colour_by_names()[static_cast<std::size_t>(c)]; }
+
+ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double range_max,
+                         int height_bands) {
+  ColourScale scale;
+  switch (c) {
+    case ColourBy::speed: scale = {0.0, 1.5, 0, "speed (m/s)"}; break;
+    case ColourBy::force: scale = {0.0, 0.7, 0, "force (N)"}; break;
+    case ColourBy::torque: scale = {0.0, 3e-4, 0, "torque (N m)"}; break;
+    case ColourBy::overlap: scale = {0.0, 0.01, 0, "overlap ratio (-)"}; break;
+    case ColourBy::height: {
+      double top = 0.0;
+      for (double y : s.initial_y) top = std::max(top, y);
+      scale = {0.0, top > 0.0 ? top : std::max(s.height, 1e-3), std::max(height_bands, 1),
+               "initial height (m)"};
+      break;
+    }
+    case ColourBy::fixed: scale = {0.0, 1.0, 0, ""}; break;
+  }
+  if (range_min < range_max) {
+    scale.min = range_min;
+    scale.max = range_max;
+  }
+  return scale;
+}
+
+double particle_value(ColourBy c, const Snapshot& s, std::size_t i) {
+  switch (c) {
+    case ColourBy::speed: return std::hypot(s.vx[i], s.vy[i]);
+    case ColourBy::force: return std::hypot(s.fx[i], s.fy[i]);
+    case ColourBy::torque: return std::abs(s.torque[i]);
+    case ColourBy::overlap: return i < s.overlap.size() ? s.overlap[i] : 0.0;
+    case ColourBy::height: return i < s.initial_y.size() ? s.initial_y[i] : s.y[i];
+    case ColourBy::fixed: return 0.0;
+  }
+  return 0.0;
+}
+
+double scale_position(const ColourScale& scale, double value) {
+  double t = (value - scale.min) / (scale.max - scale.min);
+  if (!(t > 0.0)) t = 0.0;
+  if (t > 1.0) t = 1.0;
+  if (scale.bands > 0) {
+    const double n = scale.bands;
+    t = (std::min(std::floor(t * n), n - 1.0) + 0.5) / n;
+  }
+  return t;
+}
+
+}  // namespace fluidbed::render

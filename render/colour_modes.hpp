@@ -1,0 +1,44 @@
+#pragma once
+// What a particle's colour shows: one quantity of the snapshot through a colour map over a fixed
+// range (fixed so that a video's colours mean the same in every frame), or one fixed colour.
+#include <string>
+#include <vector>
+
+#include "colour_map.hpp"
+#include "sim/snapshot.hpp"
+
+namespace fluidbed::render {
+
+enum class ColourBy {
+  speed,    // |v| (m/s)
+  force,    // |F| total force: contacts, gravity, gas (N) - Fig. 14c
+  torque,   // |T| (N m) - Fig. 14d
+  overlap,  // largest overlap ratio of the particle's contacts (-) - Fig. 15's measure
+  height,   // initial height, in bands, to watch mixing (m)
+  fixed,    // one colour
+};
+
+// "speed", "force", ... ; parse throws InputError listing the known names.
+ColourBy parse_colour_by(const std::string& name);
+std::string to_string(ColourBy c);
+std::vector<std::string> colour_by_names();
+
+struct ColourScale {
+  double min = 0.0, max = 1.0;  // value range mapped onto the colour map (unit of the quantity)
+  int bands = 0;                // > 0: quantised into this many bands (height)
+  std::string title;            // "speed (m/s)"
+};
+
+// The default range for a quantity: speed 0-1.5 m/s, force 0-0.7 N and torque 0-3e-4 N m (the
+// legends of the paper's Fig. 14), overlap 0-1 %, height from 0 to the highest initial centre.
+// `min < max` in `range` overrides the default.
+ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double range_max,
+                         int height_bands);
+
+// The particle's value of the quantity (unit of the quantity).
+double particle_value(ColourBy c, const Snapshot& s, std::size_t i);
+
+// Where `value` falls on the scale, in [0, 1] (banded scales give the band's centre).
+double scale_position(const ColourScale& scale, double value);
+
+}  // namespace fluidbed::render

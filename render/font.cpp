@@ -1,0 +1,116 @@
+#include "font.hpp"
+
+#include <stb_truetype.h>
+
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+
+namespace fluidbed::render {
+namespace {
+
+struct Range {
+  int first, count;
+};
+// Printable ASCII; Latin-1 from the degree sign on (signs, multiplication sign, letters); Greek.
+constexpr Range kRanges[] = {{32, 95}, {0xB0, 80}, {0x391, 57}};
+
+// Decodes one UTF-8 code point at s[i], advancing i; invalid bytes give U+FFFD.
+int next_code_point(const std::string& s, std::size_t& i) {
+  const auto c = static_cast<unsigned char>(s[i++]);
+  int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+  if (extra < 0) return 0xFFFD;
+  int cp = extra == 0 ? c : c & (0x3F >> extra);
+  for (; extra > 0; --extra) {
+    if (i >= s.size() || (static_cast<unsigned char>(s[i]) >> 6) != 0x2) return 0xFFFD;
+    cp = (cp << 6) | (static_cast<unsigned char>(s[i++]) & 0x3F);
+  }
+  return cp;
+}
+
+}  // namespace
+
+struct FontAtlas::Impl {
+  std::vector<stbtt_packedchar> chars[std::size(kRanges)];
+
+  const stbtt_packedchar* find(int cp, int& index) const {
+    for (std::size_t r = 0; r < std::size(kRanges); ++r) {
+      if (cp >= kRanges[r].first && cp < kRanges[r].first + kRanges[r].count) {
+        index = cp - kRanges[r].first;
+        return chars[r].data();
+      }
+    }
+    return nullptr;
+  }
+};
+
+FontAtlas::FontAtlas(const std::vector<unsigned char>& ttf, float pixel_height)
+    : impl_(std::make_unique<Impl>()), pixel_height_(pixel_height) {
+  // Two-times horizontal oversampling keeps small labels crisp under sub-pixel placement; the
+  // atlas grows until everything fits.
+  for (atlas_size_ = 256; atlas_size_ <= 4096; atlas_size_ *= 2) {
+    atlas_.assign(static_cast<std::size_t>(atlas_size_) * static_cast<std::size_t>(atlas_size_), 0);
+    stbtt_pack_context pc;
+    if (!stbtt_PackBegin(&pc, atlas_.data(), atlas_size_, atlas_size_, 0, 1, nullptr))
+      throw std::runtime_error("font: stb_truetype could not start packing");
+    stbtt_PackSetOversampling(&pc, 2, 1);
+    stbtt_pack_range ranges[std::size(kRanges)];
+    for (std::size_t r = 0; r < std::size(kRanges); ++r) {
+      impl_->chars[r].assign(static_cast<std::size_t>(kRanges[r].count), stbtt_packedchar{});
+      ranges[r] = stbtt_pack_range{};
+      ranges[r].font_size = pixel_height;
+      ranges[r].first_unicode_codepoint_in_range = kRanges[r].first;
+      ranges[r].num_chars = kRanges[r].count;
+      ranges[r].chardata_for_range = impl_->chars[r].data();
+    }
+    const int ok = stbtt_PackFontRanges(&pc, ttf.data(), 0, ranges, static_cast<int>(std::size(ranges)));
+    stbtt_PackEnd(&pc);
+    if (ok) break;
+  }
+  if (atlas_size_ > 4096) throw std::runtime_error("font: glyphs do not fit a 4096 px atlas");
+  stbtt_fontinfo info;
+  if (!stbtt_InitFont(&info, ttf.data(), stbtt_GetFontOffsetForIndex(ttf.data(), 0)))
+    throw std::runtime_error("font: not a TrueType font");
+  int x0, y0, x1, y1;
+  stbtt_GetCodepointBox(&info, 'H', &x0, &y0, &x1, &y1);
+  ascent_ = static_cast<float>(y1) * stbtt_ScaleForPixelHeight(&info, pixel_height);
+}
+
+FontAtlas::~FontAtlas() = default;
+
+void FontAtlas::layout(const std::string& text, float x, float y,
+                       std::vector<GlyphQuad>& out) const {
+  for (std::size_t i = 0; i < text.size();) {
+    int index = 0;
+    const stbtt_packedchar* chars = impl_->find(next_code_point(text, i), index);
+    if (!chars) continue;
+    stbtt_aligned_quad q;
+    stbtt_GetPackedQuad(chars, atlas_size_, atlas_size_, index, &x, &y, &q, 0);
+    if (q.x1 > q.x0) out.push_back({q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1});
+  }
+}
+
+float FontAtlas::advance(const std::string& text) const {
+  float x = 0.0f, y = 0.0f;
+  for (std::size_t i = 0; i < text.size();) {
+    int index = 0;
+    const stbtt_packedchar* chars = impl_->find(next_code_point(text, i), index);
+    if (!chars) continue;
+    stbtt_aligned_quad q;
+    stbtt_GetPackedQuad(chars, atlas_size_, atlas_size_, index, &x, &y, &q, 0);
+  }
+  return x;
+}
+
+std::vector<unsigned char> read_font_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot read the font file " + path);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  if (bytes.size() < 12) throw InputError("the font file " + path + " is empty or truncated");
+  return bytes;
+}
+
+}  // namespace fluidbed::render

@@ -1,0 +1,45 @@
+#pragma once
+// Where things go in a frame or a montage, in pixels (y down): the bed panels, the labels, the
+// colour bar. Pure arithmetic on the snapshot's domain size and the picture's size, so tests can
+// say on which pixels a particle at (x, y) must land.
+#include <vector>
+
+#include "sim/snapshot.hpp"
+
+namespace fluidbed::render {
+
+struct Rect {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  float width() const { return x1 - x0; }
+  float height() const { return y1 - y0; }
+};
+
+// One bed drawn in a panel: the inside of its walls, and the map from metres to pixels (aspect
+// kept; the bed's height fits the panel).
+struct BedView {
+  Rect inside;
+  double scale = 1.0;  // px per m
+  float px(double x) const { return inside.x0 + static_cast<float>(x * scale); }
+  float py(double y) const { return inside.y1 - static_cast<float>(y * scale); }
+};
+
+struct FrameLayout {
+  int width = 0, height = 0;           // px
+  float font = 12, small = 10, big = 16;  // text sizes (px)
+  float margin = 8, wall = 2;          // px
+  std::vector<BedView> beds;           // one per panel (a frame: the bed, then its close-up)
+  double close_up_height = 0.0;        // m: the close-up shows the bed from 0 to this height
+  float label_y = 0;                   // montage: baseline of the time under each panel
+  Rect info;                           // the text block, colour bar and legends
+  Rect colour_bar;
+};
+
+// A frame of width x height showing one snapshot: the whole bed on the left; with `close_up` in
+// (0, 1), beside it the bed's lower `close_up` of its height, magnified to the same panel height
+// (bubbles and the jet cavity, large); the labels on the right.
+FrameLayout frame_layout(const Snapshot& s, int width, int height, double close_up = 0.0);
+// Several snapshots side by side (`panels` of them, same domain), each `height` px tall with its
+// time under it, the labels and colour bar on the right. The width follows.
+FrameLayout montage_layout(const Snapshot& s, int panels, int height);
+
+}  // namespace fluidbed::render

@@ -1,0 +1,48 @@
+#pragma once
+// Draws engine snapshots: the bed's walls and jet slot, the particles at true size coloured by a
+// chosen quantity, gas and particle velocity arrows, the porosity field, a colour bar with ticks
+// and units, and the time and gas velocity. Everything comes from one snapshot (or, for a
+// montage, one per panel); nothing reads the live simulation.
+//
+// The renderer draws into its own framebuffer (multisampled, then resolved) with the context it
+// was given, which must be current on the calling thread; the picture is read back as an Image or
+// copied to a window's default framebuffer.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl_context.hpp"
+#include "image.hpp"
+#include "layout.hpp"
+#include "render_settings.hpp"
+#include "sim/snapshot.hpp"
+
+namespace fluidbed::render {
+
+class Renderer {
+ public:
+  // `font_path`: a TrueType font (assets/fonts/DejaVuSans.ttf); InputError if unreadable.
+  Renderer(GlContext& context, const std::string& font_path);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Draws one frame of width x height px (layout: frame_layout) and reads it back.
+  Image render_frame(const Snapshot& s, const RenderSettings& settings, int width, int height);
+  // Draws one frame without reading it back (a window then calls blit_to_default).
+  void draw_frame(const Snapshot& s, const RenderSettings& settings, int width, int height);
+  // Several snapshots side by side, each bed `height` px tall with its time under it (layout:
+  // montage_layout); the width follows from the count.
+  Image render_montage(const std::vector<const Snapshot*>& snapshots,
+                       const RenderSettings& settings, int height);
+  // Copies the last drawn picture to the default framebuffer (a window), scaled to fit.
+  void blit_to_default(int width, int height);
+  // The last drawn picture.
+  Image read_image();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fluidbed::render

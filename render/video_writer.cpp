@@ -1,0 +1,121 @@
+#include "video_writer.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include "core/errors.hpp"
+
+extern char** environ;
+
+namespace fluidbed::render {
+namespace {
+
+// Writes all of `data` to `fd`. SIGPIPE is held on this thread meanwhile, so a dead ffmpeg gives
+// EPIPE (an error to report) rather than killing the program; a pending SIGPIPE is consumed.
+bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
+  sigset_t pipe_set, old;
+  sigemptyset(&pipe_set);
+  sigaddset(&pipe_set, SIGPIPE);
+  pthread_sigmask(SIG_BLOCK, &pipe_set, &old);
+  bool ok = true;
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ok = false;
+      break;
+    }
+    data += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  if (!ok) {
+    const timespec zero{0, 0};
+    sigtimedwait(&pipe_set, nullptr, &zero);
+  }
+  pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  return ok;
+}
+
+}  // namespace
+
+VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
+    : path_(path), partial_(path + ".part"), width_(width), height_(height) {
+  if (width % 2 != 0 || height % 2 != 0)
+    throw InputError("video frames need an even width and height, got " + std::to_string(width) +
+                     "x" + std::to_string(height));
+  if (!(fps > 0.0)) throw InputError("video frame rate must be positive");
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("video: cannot make a pipe to ffmpeg");
+  char size[32], rate[32];
+  std::snprintf(size, sizeof size, "%dx%d", width, height);
+  std::snprintf(rate, sizeof rate, "%.6g", fps);
+  std::vector<std::string> args = {"ffmpeg", "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
+                                   "-f", "rawvideo", "-pix_fmt", "rgb24", "-video_size", size,
+                                   "-framerate", rate, "-i", "pipe:0", "-an", "-c:v", "libx264",
+                                   "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p",
+                                   "-movflags", "+faststart", "-f", "mp4", partial_};
+  // -nostdin only stops ffmpeg reading keys from the terminal; the frames come as input pipe:0.
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawnp(&pid, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[0]);
+  if (rc != 0) {
+    ::close(fds[1]);
+    throw std::runtime_error(std::string("video: cannot start ffmpeg (") + std::strerror(rc) +
+                             "); install Debian's ffmpeg");
+  }
+  fd_ = fds[1];
+  pid_ = pid;
+}
+
+VideoWriter::~VideoWriter() {
+  if (pid_ < 0) return;
+  ::close(fd_);
+  kill(pid_, SIGTERM);
+  int status = 0;
+  waitpid(pid_, &status, 0);
+  std::error_code ec;
+  std::filesystem::remove(partial_, ec);
+}
+
+void VideoWriter::write(const Image& frame) {
+  if (pid_ < 0) throw std::runtime_error("video: already closed");
+  if (frame.width != width_ || frame.height != height_)
+    throw std::invalid_argument("video: frame size differs from the video's");
+  if (!write_all(fd_, frame.rgb.data(), frame.rgb.size()))
+    throw std::runtime_error("video: ffmpeg stopped taking frames (see its message above)");
+  ++frames_;
+}
+
+void VideoWriter::close() {
+  if (pid_ < 0) return;
+  ::close(fd_);
+  int status = 0;
+  while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("video: ffmpeg failed writing " + path_);
+  std::error_code ec;
+  std::filesystem::rename(partial_, path_, ec);
+  if (ec) throw std::runtime_error("video: cannot move " + partial_ + " into place: " + ec.message());
+}
+
+}  // namespace fluidbed::render

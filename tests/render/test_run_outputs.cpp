@@ -1,0 +1,312 @@
+// `fluidbed run --frames --video --vtk --montage` on a short coupled run (300 particles, 0.02 s):
+// the files exist in the right number and size, the video decodes (ffprobe) with the right frame
+// count, the VTK series reads back (a small reader of the format here, and VTK's own readers when
+// Debian's python3-vtk9 is installed), and frame output leaves summary.json's numbers unchanged.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <set>
+
+#include "../test_support.hpp"
+
+using namespace fluidbed::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// 300 particles on the lattice start in the paper's bed with its jet: a few seconds of work.
+std::string short_run(const fs::path& out) {
+  return "run " + std::string(FLUIDBED_ASSET_DIR) +
+         "/scenes/xu_yu_1997.toml --until 0.02 --set particles.placement=lattice"
+         " --set particles.count=300 --set particles.fill_height=0.2 --out " + out.string();
+}
+constexpr int kFrames = 5;  // t = 0, 0.005, 0.01, 0.015, 0.02
+constexpr double kInterval = 0.005;
+constexpr double kDt = 1.5e-5;
+
+class RunOutputs : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = temp_dir("run-outputs");
+    with_ = run_fluidbed(short_run(root_ / "with") +
+                             " --frames --video --vtk --montage 0.01,0.02 --frame-interval 0.005"
+                             " --frame-size 320x240 --colour force",
+                         "outputs-with");
+    without_ = run_fluidbed(short_run(root_ / "without"), "outputs-without");
+  }
+  static fs::path root_;
+  static CommandResult with_, without_;
+};
+fs::path RunOutputs::root_;
+CommandResult RunOutputs::with_, RunOutputs::without_;
+
+std::pair<int, int> png_size(const fs::path& p) {
+  const std::string bytes = read_file(p);
+  if (bytes.size() < 24 || bytes.compare(1, 3, "PNG") != 0) return {-1, -1};
+  auto be32 = [&](std::size_t at) {
+    return (static_cast<unsigned char>(bytes[at]) << 24) | (static_cast<unsigned char>(bytes[at + 1]) << 16) |
+           (static_cast<unsigned char>(bytes[at + 2]) << 8) | static_cast<unsigned char>(bytes[at + 3]);
+  };
+  return {be32(16), be32(20)};
+}
+
+std::string capture(const std::string& command) {
+  std::string out;
+  FILE* p = popen(command.c_str(), "r");
+  if (!p) return out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  pclose(p);
+  return out;
+}
+
+// --- a small reader of the VTK XML files this program writes ----------------------------------
+
+// The value of name="..." in a tag's text (empty when absent). Plain string search: std::regex
+// trips GCC 12's maybe-uninitialized warning under the sanitizers.
+std::string attribute(const std::string& tag, const std::string& name) {
+  const std::string key = " " + name + "=\"";
+  const std::size_t at = tag.find(key);
+  if (at == std::string::npos) return {};
+  const std::size_t from = at + key.size();
+  return tag.substr(from, tag.find('"', from) - from);
+}
+
+// Each element `<name ...>` or `<name .../>` of `xml`: its attribute text, and the text up to the
+// closing tag when it has one.
+std::vector<std::pair<std::string, std::string>> elements(const std::string& xml, const std::string& name) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const std::string open = "<" + name + " ", close = "</" + name + ">";
+  for (std::size_t at = xml.find(open); at != std::string::npos; at = xml.find(open, at + 1)) {
+    const std::size_t end = xml.find('>', at);
+    std::string tag = xml.substr(at, end - at);
+    std::string body;
+    if (!tag.empty() && tag.back() != '/') {
+      const std::size_t stop = xml.find(close, end);
+      body = xml.substr(end + 1, stop - end - 1);
+    }
+    out.emplace_back(std::move(tag), std::move(body));
+  }
+  return out;
+}
+
+std::vector<std::uint8_t> from_base64(const std::string& text) {
+  std::vector<std::uint8_t> out;
+  std::uint32_t acc = 0;
+  int bits = 0;
+  for (char c : text) {
+    int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26
+            : c >= '0' && c <= '9' ? c - '0' + 52 : c == '+' ? 62 : c == '/' ? 63 : -1;
+    if (v < 0) continue;
+    acc = (acc << 6) | static_cast<std::uint32_t>(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<std::uint8_t>((acc >> bits) & 0xFF));
+    }
+  }
+  return out;
+}
+
+struct Array {
+  std::string type;
+  int components = 1;
+  std::vector<double> values;
+};
+
+// Every named <DataArray> of a file, decoded (binary: UInt32 byte count, then the values).
+std::map<std::string, Array> read_arrays(const fs::path& p) {
+  std::map<std::string, Array> arrays;
+  const std::string xml = read_file(p);
+  for (const auto& [tag, body] : elements(xml, "DataArray")) {
+    Array a;
+    a.type = attribute(tag, "type");
+    const std::string nc = attribute(tag, "NumberOfComponents");
+    a.components = nc.empty() ? 1 : std::stoi(nc);
+    if (attribute(tag, "format") == "binary") {
+      const auto raw = from_base64(body);
+      std::uint32_t bytes = 0;
+      std::memcpy(&bytes, raw.data(), 4);
+      EXPECT_EQ(bytes + 4, raw.size()) << p;
+      const std::size_t size = a.type == "Float64" ? 8 : 4;
+      for (std::size_t k = 4; k + size <= raw.size(); k += size) {
+        if (a.type == "Float32") {
+          float f;
+          std::memcpy(&f, raw.data() + k, 4);
+          a.values.push_back(f);
+        } else if (a.type == "Int32") {
+          std::int32_t i;
+          std::memcpy(&i, raw.data() + k, 4);
+          a.values.push_back(i);
+        } else {
+          double d;
+          std::memcpy(&d, raw.data() + k, 8);
+          a.values.push_back(d);
+        }
+      }
+    } else {
+      a.values.push_back(std::stod(body));
+    }
+    const std::string name = attribute(tag, "Name");
+    arrays[name.empty() ? "Points" : name] = a;
+  }
+  return arrays;
+}
+
+// (time, file) of a .pvd collection.
+std::vector<std::pair<double, std::string>> read_collection(const fs::path& p) {
+  std::vector<std::pair<double, std::string>> out;
+  for (const auto& [tag, body] : elements(read_file(p), "DataSet"))
+    out.emplace_back(std::stod(attribute(tag, "timestep")), attribute(tag, "file"));
+  return out;
+}
+
+}  // namespace
+
+TEST_F(RunOutputs, FramesHaveTheRightCountAndSize) {
+  ASSERT_EQ(with_.status, 0) << with_.err;
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(root_ / "with" / "frames")) names.push_back(e.path().filename());
+  std::sort(names.begin(), names.end());
+  ASSERT_EQ(names.size(), static_cast<std::size_t>(kFrames));
+  for (int k = 0; k < kFrames; ++k) {
+    char want[32];
+    std::snprintf(want, sizeof want, "frame_%06d.png", k);
+    EXPECT_EQ(names[static_cast<std::size_t>(k)], want);
+    EXPECT_EQ(png_size(root_ / "with" / "frames" / want), std::make_pair(320, 240)) << want;
+  }
+  // The montage: two panels side by side, the frame height tall.
+  const auto montage = png_size(root_ / "with" / "montage.png");
+  EXPECT_EQ(montage.second, 240);
+  EXPECT_GT(montage.first, 100);
+  // Nothing half-written left behind.
+  for (const auto& e : fs::recursive_directory_iterator(root_ / "with"))
+    EXPECT_EQ(e.path().string().find(".part"), std::string::npos) << e.path();
+}
+
+TEST_F(RunOutputs, VideoDecodesWithTheRightFrameCount) {
+  ASSERT_EQ(with_.status, 0) << with_.err;
+  const fs::path video = root_ / "with" / "video.mp4";
+  ASSERT_TRUE(fs::exists(video));
+  const std::string probe = capture(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=codec_name,width,height,nb_read_frames -of json " + video.string());
+  const auto j = nlohmann::json::parse(probe);
+  const auto& s = j.at("streams").at(0);
+  EXPECT_EQ(s.at("codec_name"), "h264");
+  EXPECT_EQ(s.at("width"), 320);
+  EXPECT_EQ(s.at("height"), 240);
+  EXPECT_EQ(std::stoi(s.at("nb_read_frames").get<std::string>()), kFrames);
+}
+
+TEST_F(RunOutputs, FrameOutputLeavesTheSummaryUnchanged) {
+  ASSERT_EQ(with_.status, 0) << with_.err;
+  ASSERT_EQ(without_.status, 0) << without_.err;
+  auto a = nlohmann::json::parse(read_file(root_ / "with" / "summary.json"));
+  auto b = nlohmann::json::parse(read_file(root_ / "without" / "summary.json"));
+  // Wall-clock measurements differ from run to run; every number of the physics must not.
+  for (auto* j : {&a, &b})
+    for (auto it = j->begin(); it != j->end();)
+      it = it.key().find("wall") != std::string::npos || it.key().find("per_s") != std::string::npos ||
+                   it.key().find("timer") != std::string::npos
+               ? j->erase(it)
+               : std::next(it);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(read_file(root_ / "with" / "timeseries.csv"), read_file(root_ / "without" / "timeseries.csv"));
+  EXPECT_FALSE(a.at("state_hash").get<std::string>().empty());
+}
+
+TEST_F(RunOutputs, VtkSeriesReadsBack) {
+  ASSERT_EQ(with_.status, 0) << with_.err;
+  const fs::path vtk = root_ / "with" / "vtk";
+  const auto particles = read_collection(vtk / "particles.pvd");
+  const auto gas = read_collection(vtk / "gas.pvd");
+  ASSERT_EQ(particles.size(), static_cast<std::size_t>(kFrames));
+  ASSERT_EQ(gas.size(), static_cast<std::size_t>(kFrames));
+  const auto summary = nlohmann::json::parse(read_file(root_ / "with" / "summary.json"));
+  const int n = summary.at("particles").get<int>();
+  ASSERT_EQ(n, 300);
+  for (int k = 0; k < kFrames; ++k) {
+    // Times: the nearest step to k x interval.
+    EXPECT_NEAR(particles[static_cast<std::size_t>(k)].first, k * kInterval, 0.5 * kDt + 1e-12);
+    EXPECT_EQ(gas[static_cast<std::size_t>(k)].first, particles[static_cast<std::size_t>(k)].first);
+    const auto p = read_arrays(vtk / particles[static_cast<std::size_t>(k)].second);
+    std::set<std::string> names;
+    for (const auto& [name, a] : p) names.insert(name);
+    EXPECT_EQ(names, (std::set<std::string>{"Points", "TimeValue", "velocity", "force", "torque",
+                                            "spin", "overlap", "radius", "initial_height", "id",
+                                            "connectivity", "offsets"}));
+    EXPECT_EQ(p.at("Points").values.size(), 3u * n);
+    EXPECT_EQ(p.at("velocity").values.size(), 3u * n);
+    EXPECT_EQ(p.at("id").values.size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(p.at("id").values.back(), n - 1);
+    EXPECT_NEAR(p.at("radius").values.front(), 0.002, 1e-9);
+    EXPECT_EQ(p.at("TimeValue").values.front(), particles[static_cast<std::size_t>(k)].first);
+    const auto g = read_arrays(vtk / gas[static_cast<std::size_t>(k)].second);
+    EXPECT_EQ(g.at("velocity").values.size(), 3u * 15 * 45);
+    EXPECT_EQ(g.at("pressure").values.size(), 15u * 45);
+    for (double eps : g.at("porosity").values) {
+      EXPECT_GT(eps, 0.2);
+      EXPECT_LE(eps, 1.0 + 1e-6);
+    }
+  }
+  // ParaView's readers (VTK's own) open every file of the series: counts and names agree.
+  if (std::system("/usr/bin/python3 -c 'import vtk' 2>/dev/null") != 0)
+    GTEST_SKIP() << "python3-vtk9 is not installed (scripts/install-deps.sh installs it)";
+  const std::string script = R"PY(
+import sys, re, vtk
+d = sys.argv[1]
+for kind, reader in (("particles", vtk.vtkXMLPolyDataReader), ("gas", vtk.vtkXMLImageDataReader)):
+    text = open(f"{d}/{kind}.pvd").read()
+    for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text):
+        r = reader(); r.SetFileName(f"{d}/{f}"); r.Update(); o = r.GetOutput()
+        data = o.GetPointData() if kind == "particles" else o.GetCellData()
+        names = sorted(data.GetArrayName(i) for i in range(data.GetNumberOfArrays()))
+        count = o.GetNumberOfPoints() if kind == "particles" else o.GetNumberOfCells()
+        time = o.GetFieldData().GetArray("TimeValue").GetValue(0)
+        print(kind, t, count, ",".join(names), repr(time))
+)PY";
+  write_file(root_ / "read.py", script);
+  const std::string out = capture("/usr/bin/python3 " + (root_ / "read.py").string() + " " + vtk.string());
+  std::istringstream lines(out);
+  std::string kind, t, names, time;
+  int count = 0, seen = 0;
+  while (lines >> kind >> t >> count >> names >> time) {
+    ++seen;
+    if (kind == "particles") {
+      EXPECT_EQ(count, n);
+      EXPECT_EQ(names, "force,id,initial_height,overlap,radius,spin,torque,velocity");
+    } else {
+      EXPECT_EQ(count, 15 * 45);
+      EXPECT_EQ(names, "porosity,pressure,velocity");
+    }
+    EXPECT_DOUBLE_EQ(std::stod(t), std::stod(time));
+  }
+  EXPECT_EQ(seen, 2 * kFrames) << out;
+}
+
+TEST(RunOutputOptions, BadValuesAreRefusedInOneLine) {
+  const auto dir = temp_dir("run-output-options");
+  const std::string base = short_run(dir / "o");
+  struct Case {
+    std::string args, needle;
+  };
+  for (const Case& c : {Case{" --frames --colour temperature", "temperature"},
+                        Case{" --frames --frame-size 12x", "--frame-size"},
+                        Case{" --montage 0.01,5", "--montage"},
+                        Case{" --video --frame-size 321x240", "even"},
+                        Case{" --frames --gl-backend vulkan", "osmesa"}}) {
+    const CommandResult r = run_fluidbed(base + c.args, "run-output-options");
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o" / "summary.json")) << c.args;
+  }
+}
