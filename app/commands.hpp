@@ -45,6 +45,7 @@ struct SweepArgs {
 
 struct ReproduceArgs {
   std::string out;
+  std::vector<std::string> overrides;  // applied to every scene (e.g. a smaller bed)
   bool quick = false;  // every figure at lower fidelity, in minutes
   int threads = 0;
 };

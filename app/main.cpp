@@ -81,6 +81,10 @@ int main(int argc, char** argv) {
   reproduce->add_option("--out", reproduce_args.out, "output folder (default out/reproduce)");
   reproduce->add_flag("--quick", reproduce_args.quick, "shorter runs: every figure in minutes");
   reproduce->add_option("--threads", reproduce_args.threads, "threads inside a step");
+  reproduce->add_option("--set", reproduce_args.overrides,
+                        "override a value in every scene: section.key=value")
+      ->take_all()
+      ->allow_extra_args(false);
 
   auto* exporter = app.add_subcommand("export", "write the scene for another code (LIGGGHTS)");
   exporter->add_option("scene", export_args.scene, "scene file (TOML)")->required();

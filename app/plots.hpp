@@ -38,6 +38,8 @@ class TrajectoryRecorder {
 };
 
 void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene);
+// sweep.csv, summary.json (with umf_m_s) and sweep.png in the sweep's output folder.
+void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene);
 
 // Writes DIR/dp.png (when the run has gas), DIR/overlap.png and, for each trajectory,
 // DIR/trajectory.png (path in the bed, x and y against time). Returns the files written.

@@ -33,21 +33,7 @@ std::vector<double> parse_velocities(const std::string& list) {
 
 }  // namespace
 
-int sweep_command(const SweepArgs& a) {
-  const Settings s = load_scene(a.scene, a.overrides);
-  SweepOptions o;
-  if (!a.velocities.empty()) o.velocities = parse_velocities(a.velocities);
-  o.run_time = a.run_time;
-  o.averaging_start = a.averaging_start;
-  o.threads = a.threads;
-  o.out_dir = a.out.empty() ? "out/sweep" : a.out;
-  o.log = [](const std::string& line) {
-    std::printf("%s\n", line.c_str());
-    std::fflush(stdout);
-  };
-  std::filesystem::create_directories(o.out_dir);
-  const SweepResult r = run_sweep(s, o);
-
+void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene) {
   std::string csv = "branch,u_superficial,dp_mean,dp_std,status,wall_time_s\n";
   char line[256];
   nlohmann::json points = nlohmann::json::array();
@@ -66,7 +52,7 @@ int sweep_command(const SweepArgs& a) {
   write_file_atomically((dir / "sweep.csv").string(), [&](std::ostream& out) { out << csv; });
 
   nlohmann::json j;
-  j["scene"] = s.scene.name;
+  j["scene"] = scene;
   j["umf_m_s"] = r.umf.ok ? nlohmann::json(r.umf.umf) : nlohmann::json(nullptr);
   j["umf_method"] =
       "decreasing branch (with the top run): least-squares line through the defluidized points "
@@ -88,7 +74,24 @@ int sweep_command(const SweepArgs& a) {
   j["points"] = points;
   write_file_atomically((dir / "summary.json").string(),
                         [&](std::ostream& out) { out << j.dump(2) << "\n"; });
-  plot_sweep((dir / "sweep.png").string(), r, s.scene.name);
+  plot_sweep((dir / "sweep.png").string(), r, scene);
+}
+
+int sweep_command(const SweepArgs& a) {
+  const Settings s = load_scene(a.scene, a.overrides);
+  SweepOptions o;
+  if (!a.velocities.empty()) o.velocities = parse_velocities(a.velocities);
+  o.run_time = a.run_time;
+  o.averaging_start = a.averaging_start;
+  o.threads = a.threads;
+  o.out_dir = a.out.empty() ? "out/sweep" : a.out;
+  o.log = [](const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  };
+  std::filesystem::create_directories(o.out_dir);
+  const SweepResult r = run_sweep(s, o);
+  write_sweep_outputs(r, o, s.scene.name);
   if (r.umf.ok)
     std::printf("U_mf = %.3f m/s (plateau %.0f Pa; bed weight per area %.0f Pa)\n", r.umf.umf,
                 r.umf.plateau, r.bed_weight_per_area);
