@@ -27,7 +27,7 @@ struct RunArgs {
   std::vector<std::string> overrides;
   double until = -1.0;  // s, < 0: the scene's time.end
   std::string out;      // output folder; empty: out/<scene file name>
-  int threads = 0;      // threads inside a step; 0: one per core
+  int threads = 1;      // threads inside a step; 0: one per core
   OutputArgs output;    // run only
   bool plots = false;   // run: dp.png, overlap.png, trajectory.png
   std::string track;    // run --plots: particle ids "12,345"; empty: two from the jet region
@@ -47,7 +47,7 @@ struct ReproduceArgs {
   std::string out;
   std::vector<std::string> overrides;  // applied to every scene (e.g. a smaller bed)
   bool quick = false;  // every figure at lower fidelity, in minutes
-  int threads = 0;
+  int threads = 1;
 };
 
 int run_command(const RunArgs& a);

@@ -16,7 +16,7 @@ void add_scene_options(CLI::App* cmd, fluidbed::app::RunArgs& a, bool scene_requ
       ->take_all()
       ->allow_extra_args(false);
   cmd->add_option("--until", a.until, "simulated time to reach, in seconds");
-  cmd->add_option("--threads", a.threads, "threads inside a step (default: one per core)")
+  cmd->add_option("--threads", a.threads, "threads inside a step (default 1; 0: one per core)")
       ->check(CLI::NonNegativeNumber);
 }
 
