@@ -3,6 +3,7 @@
 find_path(FLUIDBED_STB_INCLUDE_DIR stb_truetype.h PATH_SUFFIXES stb REQUIRED)
 add_library(fluidbed_chart STATIC
   ${CMAKE_CURRENT_LIST_DIR}/chart.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/chart_draw.cpp
   ${CMAKE_CURRENT_LIST_DIR}/chart_raster.cpp
   ${CMAKE_CURRENT_LIST_DIR}/chart_text.cpp
   ${CMAKE_CURRENT_LIST_DIR}/chart_ticks.cpp)
