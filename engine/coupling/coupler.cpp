@@ -4,6 +4,10 @@
 #include <cmath>
 #include <sstream>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "cfd/gas_solver.hpp"
 #include "core/errors.hpp"
 #include "core/threads.hpp"
@@ -26,23 +30,52 @@ Coupler::Coupler(const GasGrid& grid, const Settings& s, std::size_t particles)
       sum_fy_(static_cast<std::size_t>(grid.cells()), 0.0) {
   threads_ = resolve_threads(s.threads);
   parallel_ = threads_ > 1 && particles >= 256;
-  shares_.resize(particles);
+  sums_.configure(grid.cells(), threads_);
+  for (auto* v : {&slip_x_, &slip_y_, &slip_, &eps_at_, &ln_eps_at_, &beta_}) v->assign(particles, 0.0);
   const auto cells = static_cast<std::size_t>(grid.cells());
   for (auto* v : {&cell_ux_, &cell_uy_, &cell_gx_, &cell_gy_, &ln_eps_}) v->assign(cells, 0.0);
 }
 
-const std::vector<double>& Coupler::compute_porosity(const Particles& p, double time) {
-  // Each sphere's shares in parallel (the closed forms are the work), then added up per cell in
-  // particle order, so the porosity is the same bits for any thread count.
-  const auto n = static_cast<std::int64_t>(p.size());
-#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_)
-  for (std::int64_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    particle_volume_shares(grid_, p.x[i], p.y[i], p.radius[i], shares_[i]);
+// Runs body(t, b, e) on each thread's particles [b, e) (the split's, or even blocks).
+template <class F>
+void Coupler::per_thread(std::size_t n, const std::vector<std::size_t>& split, F&& body) {
+#pragma omp parallel num_threads(threads_) if (parallel_)
+  {
+    int t = 0, T = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    T = omp_get_num_threads();
+#endif
+    std::size_t b = 0, e = 0;
+    split_particles(split, n, t, T, b, e);
+    body(t, b, e);
   }
+}
+
+// Thread t's particles [b, e), block by block, into lane t of `sums`.
+template <class F>
+void Coupler::sum_blocks(int t, std::size_t b, std::size_t e, F&& add_particle) {
+  for (std::size_t q = b; q < e; q += kParticleBlock) {
+    sums_.begin_block(t);
+    const std::size_t q1 = std::min(e, q + kParticleBlock);
+    for (std::size_t i = q; i < q1; ++i) add_particle(i);
+  }
+}
+
+const std::vector<double>& Coupler::compute_porosity(const Particles& p, double time,
+                                                     const std::vector<std::size_t>& split) {
+  // Each sphere's shares (the closed forms are the work) summed per cell block by block, so the
+  // porosity is the same bits for any thread count.
+  for (int t = 0; t < sums_.threads(); ++t) sums_.clear(t);
+  per_thread(p.size(), split, [&](int t, std::size_t b, std::size_t e) {
+    sum_blocks(t, b, e, [&](std::size_t i) {
+      VolumeShares sh;
+      particle_volume_shares(grid_, p.x[i], p.y[i], p.radius[i], sh);
+      for (int q = 0; q < sh.count; ++q) sums_.add(t, sh.cell[q], sh.volume[q], 0.0);
+    });
+  });
   std::fill(solid_.begin(), solid_.end(), 0.0);
-  for (const VolumeShares& sh : shares_)
-    for (int q = 0; q < sh.count; ++q) solid_[sh.cell[q]] += sh.volume[q];
+  sums_.add_to(solid_, nullptr);
   porosity_from_solid(grid_, solid_, eps_);
   for (std::size_t c = 0; c < eps_.size(); ++c) {
     if (!(eps_[c] > 0.0 && eps_[c] <= 1.0 + 1e-12)) {
@@ -64,23 +97,37 @@ void Coupler::refresh_cells(const GasSolver& gas) {
   }
 }
 
-void Coupler::compute_fluid_forces(Particles& p) {
+void Coupler::compute_fluid_forces(Particles& p, const std::vector<std::size_t>& split) {
+  per_thread(p.size(), split,
+             [&](int, std::size_t b, std::size_t e) { compute_fluid_forces(p, b, e); });
+}
+
+void Coupler::compute_fluid_forces(Particles& p, std::size_t begin, std::size_t end) {
   constexpr double kPi = 3.14159265358979323846;
-  const auto n = static_cast<std::int64_t>(p.size());
-  const bool pgf = pressure_gradient_force_;
-#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_)
-  for (std::int64_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
+  // Three passes over the range: the gas at each particle (gathers from the cells), the drag
+  // coefficient (pure arithmetic over arrays: vectorised), the forces.
+  for (std::size_t i = begin; i < end; ++i) {
     const int c = grid_.cell_of(p.x[i], p.y[i]);
     cell_[i] = c;
-    const double R = p.radius[i];
     const double sx = cell_ux_[c] - p.vx[i], sy = cell_uy_[c] - p.vy[i];
-    const double beta = di_felice_beta_ln(R, rho_f_, mu_f_, eps_[c], ln_eps_[c],
-                                          std::sqrt(sx * sx + sy * sy));
-    drag_x_[i] = beta * sx;
-    drag_y_[i] = beta * sy;
+    slip_x_[i] = sx;
+    slip_y_[i] = sy;
+    slip_[i] = std::sqrt(sx * sx + sy * sy);
+    eps_at_[i] = eps_[c];
+    ln_eps_at_[i] = ln_eps_[c];
+  }
+  const std::size_t count = end - begin;
+  di_felice_beta_many(count, p.radius.data() + begin, eps_at_.data() + begin,
+                      ln_eps_at_.data() + begin, slip_.data() + begin, rho_f_, mu_f_,
+                      beta_.data() + begin);
+  const bool pgf = pressure_gradient_force_;
+  for (std::size_t i = begin; i < end; ++i) {
+    const int c = cell_[i];
+    drag_x_[i] = beta_[i] * slip_x_[i];
+    drag_y_[i] = beta_[i] * slip_y_[i];
     double fx = drag_x_[i], fy = drag_y_[i];
     if (pgf) {
+      const double R = p.radius[i];
       const double v = 4.0 / 3.0 * kPi * R * R * R;
       fx -= v * cell_gx_[c];
       fy -= v * cell_gy_[c];
@@ -90,11 +137,12 @@ void Coupler::compute_fluid_forces(Particles& p) {
   }
 }
 
-void Coupler::accumulate_drag(const Particles& p) {
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    sum_fx_[cell_[i]] += drag_x_[i];
-    sum_fy_[cell_[i]] += drag_y_[i];
-  }
+void Coupler::accumulate_drag(const Particles& p, const std::vector<std::size_t>& split) {
+  for (int t = 0; t < sums_.threads(); ++t) sums_.clear(t);
+  per_thread(p.size(), split, [&](int t, std::size_t b, std::size_t e) {
+    sum_blocks(t, b, e, [&](std::size_t i) { sums_.add(t, cell_[i], drag_x_[i], drag_y_[i]); });
+  });
+  sums_.add_to(sum_fx_, &sum_fy_);
   ++accumulated_;
 }
 

@@ -61,6 +61,19 @@ class CellGrid {
     }
   }
 
+  // Calls f(j) for every particle in the cell of (x, y) and the 8 around it.
+  template <class F>
+  void for_each_near(double x, double y, F&& f) const {
+    const int c = cell_index(x, y);
+    const int cx = c % nx_, cy = c / nx_;
+    for (int qy = std::max(cy - 1, 0); qy <= std::min(cy + 1, ny_ - 1); ++qy) {
+      const int row = qy * nx_;
+      const int b = start_[row + std::max(cx - 1, 0)];
+      const int e = start_[row + std::min(cx + 1, nx_ - 1) + 1];  // three cells in a row are contiguous
+      for (int k = b; k < e; ++k) f(sorted_[k]);
+    }
+  }
+
   int nx() const { return nx_; }
   int ny() const { return ny_; }
 

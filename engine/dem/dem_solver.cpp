@@ -4,6 +4,10 @@
 #include <cmath>
 #include <sstream>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "core/errors.hpp"
 #include "core/hash.hpp"
 #include "core/threads.hpp"
@@ -35,8 +39,10 @@ DemSolver::DemSolver(const Settings& s, Particles particles)
 
   const std::size_t n = particles.size();
   threads_ = resolve_threads(s.threads);
-  // A fork costs a few microseconds: worth it only when a step has real work.
+  // A fork costs a microsecond or two: worth it only when a step has real work.
   parallel_ = threads_ > 1 && n >= 256;
+  partial_.assign(static_cast<std::size_t>(threads_), StepPartial{});
+  block_ke_.assign(particle_blocks(n), 0.0);
   double dmax = 0.0;
   for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
   list_.configure(width_, height_, dmax, s.contact.skin * dmax, n);
@@ -77,31 +83,17 @@ void DemSolver::fail(const std::string& what) const {
   throw SimulationFailure(os.str());
 }
 
-template <class F>
-void DemSolver::for_particles(F&& f) {
-  const auto n = static_cast<std::int64_t>(state_.particles.size());
-#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_)
-  for (std::int64_t i = 0; i < n; ++i) f(static_cast<std::size_t>(i));
-}
-
+// Pass 1 over candidate pairs [k0, k1): each pair's force from its history, written to its slot.
 template <bool Incremental>
-void DemSolver::evaluate_forces(double dtau) {
-  Particles& P = state_.particles;
-  const auto n = static_cast<std::int64_t>(P.size());
+void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPartial& acc) {
+  const Particles& P = state_.particles;
   const double* x = P.x.data();
   const double* y = P.y.data();
   const double* vx = P.vx.data();
   const double* vy = P.vy.data();
   const double* w = P.w.data();
   const double* r = P.radius.data();
-
-  PhaseClock clock(times_);
-  if (list_.stale(P)) list_.build(P);
-  clock.lap(Phase::Neighbours);
-
-  // Pass 1, over candidate pairs: each pair's force from its history, written to its slot.
   NeighbourList& L = list_;
-  const auto m = static_cast<std::int64_t>(L.size());
   const std::int32_t* li = L.i.data();
   const std::int32_t* lj = L.j.data();
   double* ldn = L.dn.data();
@@ -114,9 +106,7 @@ void DemSolver::evaluate_forces(double dtau) {
   const ContactParams params = params_;
   int contacts = 0, sliding = 0;
   double max_ratio = 0.0;
-#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_) \
-    reduction(+ : contacts, sliding) reduction(max : max_ratio)
-  for (std::int64_t k = 0; k < m; ++k) {
+  for (std::int64_t k = k0; k < k1; ++k) {
     const int i = li[k], j = lj[k];
     const double px = x[j] - x[i], py = y[j] - y[i];
     const double R = r[i] + r[j];
@@ -158,9 +148,27 @@ void DemSolver::evaluate_forces(double dtau) {
     ++contacts;
     sliding += f.sliding;
   }
+  acc.contacts += contacts;
+  acc.sliding += sliding;
+  acc.max_ratio = std::max(acc.max_ratio, max_ratio);
+}
 
-  // Pass 2, over particles: gravity, gas, the pair forces gathered in a fixed order (entries
-  // where the particle is second, then first), and the walls.
+// Pass 2 over particles [b, e): gravity, gas, the pair forces gathered in a fixed order (entries
+// where the particle is second, then first), and the walls.
+template <bool Incremental>
+void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPartial& acc) {
+  Particles& P = state_.particles;
+  const double* x = P.x.data();
+  const double* y = P.y.data();
+  const double* vx = P.vx.data();
+  const double* vy = P.vy.data();
+  const double* w = P.w.data();
+  const double* r = P.radius.data();
+  const NeighbourList& L = list_;
+  const double* lfx = L.fx.data();
+  const double* lfy = L.fy.data();
+  const double* lft = L.ft.data();
+  const double* lratio = L.ratio.data();
   const std::int32_t* fb = L.first_begin.data();
   const std::int32_t* sb = L.second_begin.data();
   const std::int32_t* sp = L.second_pair.data();
@@ -171,13 +179,11 @@ void DemSolver::evaluate_forces(double dtau) {
   double* fy = P.fy.data();
   double* tq = P.torque.data();
   double* ov = overlap_.data();
+  const ContactParams params = params_;
   const double g = gravity_;
   double max_wall_ratio = 0.0;
-  int wall_contacts = 0;
-#pragma omp parallel for schedule(static) num_threads(threads_) if (parallel_) \
-    reduction(+ : wall_contacts, sliding) reduction(max : max_wall_ratio)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  int wall_contacts = 0, sliding = 0;
+  for (std::size_t i = b; i < e; ++i) {
     double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
     for (std::int32_t q = sb[i]; q < sb[i + 1]; ++q) {
       const std::int32_t k = sp[q];
@@ -197,9 +203,11 @@ void DemSolver::evaluate_forces(double dtau) {
       const std::size_t s = i * nw + c;
       const double d = wall.nx * x[i] + wall.ny * y[i] - wall.offset;
       if (d >= r[i]) {
-        wh.active[s] = 0;
-        wh.dn[s] = 0.0;
-        wh.dt[s] = 0.0;
+        if (wh.active[s]) {
+          wh.active[s] = 0;
+          wh.dn[s] = 0.0;
+          wh.dt[s] = 0.0;
+        }
         continue;
       }
       const double overlap = r[i] - d;
@@ -232,38 +240,223 @@ void DemSolver::evaluate_forces(double dtau) {
     tq[i] = tqi;
     ov[i] = ovi;
   }
-  clock.lap(Phase::Contacts);
+  acc.wall_contacts += wall_contacts;
+  acc.sliding += sliding;
+  acc.max_wall_ratio = std::max(acc.max_wall_ratio, max_wall_ratio);
+}
 
-  diag_.max_overlap_ratio = max_ratio;
-  diag_.max_wall_overlap_ratio = max_wall_ratio;
-  diag_.pair_contacts = contacts;
-  diag_.wall_contacts = wall_contacts;
-  diag_.sliding_contacts = sliding;
-  if (max_ratio > overlap_limit_) {
-    // The first pair (in list order) with the largest overlap, for the message.
-    for (std::int64_t k = 0; k < m; ++k)
-      if (lratio[k] == max_ratio) {
-        worst_pair_i_ = li[k];
-        worst_pair_j_ = lj[k];
-        break;
+// The integrator's part before the forces (predictor, kick-drift) for particles [b, e).
+void DemSolver::before_forces(std::size_t b, std::size_t e) {
+  Particles& P = state_.particles;
+  const double h = dt_;
+  double* x = P.x.data();
+  double* y = P.y.data();
+  double* vx = P.vx.data();
+  double* vy = P.vy.data();
+  double* w = P.w.data();
+  const double* ax = P.ax.data();
+  const double* ay = P.ay.data();
+  const double* aw = P.aw.data();
+  switch (integrator_) {
+    case Integrator::Newmark: {
+      // Eqs 24-28 with alpha = 1/2, beta = 1/4: predict, evaluate forces at the prediction,
+      // correct with the new acceleration.
+      const double hh4 = 0.25 * h * h;
+      for (std::size_t i = b; i < e; ++i) {
+        x[i] += h * vx[i] + hh4 * ax[i];
+        y[i] += h * vy[i] + hh4 * ay[i];
+        vx[i] += 0.5 * h * ax[i];
+        vy[i] += 0.5 * h * ay[i];
+        w[i] += 0.5 * h * aw[i];
       }
+      break;
+    }
+    case Integrator::VelocityVerlet:  // kick half, drift, forces with the half-step velocity
+      for (std::size_t i = b; i < e; ++i) {
+        vx[i] += 0.5 * h * ax[i];
+        vy[i] += 0.5 * h * ay[i];
+        w[i] += 0.5 * h * aw[i];
+        x[i] += h * vx[i];
+        y[i] += h * vy[i];
+      }
+      break;
+    case Integrator::SymplecticEuler:  // forces first
+      break;
   }
 }
 
-void DemSolver::evaluate_forces_dispatch(double dtau) {
-  times_.add(Phase::Integration, PhaseTimes::Clock::now() - integration_start_);
-  if (incremental_) {
-    evaluate_forces<true>(dtau);
-  } else {
-    evaluate_forces<false>(dtau);
+// The integrator's part after the forces (corrector, kick, Euler update) for particles [b, e),
+// and each block's kinetic energy. Returns true when one of them has left the box.
+bool DemSolver::after_forces(std::size_t b, std::size_t e) {
+  Particles& P = state_.particles;
+  const double h = dt_;
+  double* x = P.x.data();
+  double* y = P.y.data();
+  double* vx = P.vx.data();
+  double* vy = P.vy.data();
+  double* w = P.w.data();
+  double* ax = P.ax.data();
+  double* ay = P.ay.data();
+  double* aw = P.aw.data();
+  const double* fx = P.fx.data();
+  const double* fy = P.fy.data();
+  const double* tq = P.torque.data();
+  const double* im = P.inv_mass.data();
+  const double* ii = P.inv_inertia.data();
+  switch (integrator_) {
+    case Integrator::Newmark: {
+      const double hh4 = 0.25 * h * h;
+      for (std::size_t i = b; i < e; ++i) {
+        const double axi = fx[i] * im[i], ayi = fy[i] * im[i], awi = tq[i] * ii[i];
+        vx[i] += 0.5 * h * axi;
+        vy[i] += 0.5 * h * ayi;
+        w[i] += 0.5 * h * awi;
+        x[i] += hh4 * axi;
+        y[i] += hh4 * ayi;
+        ax[i] = axi;
+        ay[i] = ayi;
+        aw[i] = awi;
+      }
+      break;
+    }
+    case Integrator::VelocityVerlet:
+      for (std::size_t i = b; i < e; ++i) {
+        ax[i] = fx[i] * im[i];
+        ay[i] = fy[i] * im[i];
+        aw[i] = tq[i] * ii[i];
+        vx[i] += 0.5 * h * ax[i];
+        vy[i] += 0.5 * h * ay[i];
+        w[i] += 0.5 * h * aw[i];
+      }
+      break;
+    case Integrator::SymplecticEuler:
+      for (std::size_t i = b; i < e; ++i) {
+        ax[i] = fx[i] * im[i];
+        ay[i] = fy[i] * im[i];
+        aw[i] = tq[i] * ii[i];
+        vx[i] += h * ax[i];
+        vy[i] += h * ay[i];
+        w[i] += h * aw[i];
+        x[i] += h * vx[i];
+        y[i] += h * vy[i];
+      }
+      break;
   }
-  integration_start_ = PhaseTimes::Clock::now();
+  const double* m = P.mass.data();
+  for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk) {
+    const std::size_t q1 = std::min(e, (blk + 1) * kParticleBlock);
+    double ke = 0.0;
+    for (std::size_t i = blk * kParticleBlock; i < q1; ++i)
+      ke += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * w[i] * w[i] / ii[i];
+    block_ke_[blk] = ke;
+  }
+  // Every particle inside the box (with a radius of slack): branch-free; finish_step looks for
+  // the culprit only when this fails.
+  const double* r = P.radius.data();
+  bool outside = false;
+  for (std::size_t i = b; i < e; ++i)
+    outside |= !(x[i] >= -r[i] && x[i] <= width_ + r[i] && y[i] >= -r[i] && y[i] <= height_ + r[i]);
+  return outside;
+}
+
+void DemSolver::thread_range(int t, int T, std::size_t& b, std::size_t& e) const {
+  split_particles(split_, state_.particles.size(), t, T, b, e);
+}
+
+void DemSolver::balance(int T) {
+  // Whole blocks per thread, cut where the work is halved (thirded, ...): a candidate pair
+  // costs about one unit, a particle's own work (integration, gathering, walls) about three
+  // (measured on the packing's split). A bed is denser at the bottom, so equal particle counts
+  // would leave the thread with the upper half waiting for the other.
+  constexpr double kParticleWork = 3.0;
+  const std::size_t n = state_.particles.size();
+  const std::size_t blocks = particle_blocks(n);
+  const std::int32_t* fb = list_.first_begin.data();
+  const bool have_list = list_.first_begin.size() == n + 1;
+  auto work_to = [&](std::size_t p) {  // work of particles [0, p)
+    return kParticleWork * static_cast<double>(p) + (have_list ? static_cast<double>(fb[p]) : 0.0);
+  };
+  const double total = work_to(n);
+  split_.assign(static_cast<std::size_t>(T) + 1, n);
+  split_[0] = 0;
+  std::size_t blk = 0;
+  for (int t = 1; t < T; ++t) {
+    const double target = total * t / T;
+    while (blk < blocks && work_to(std::min(n, (blk + 1) * kParticleBlock)) <= target) ++blk;
+    split_[t] = std::max(split_[t - 1], std::min(n, blk * kParticleBlock));
+  }
+}
+
+template <bool Incremental>
+void DemSolver::step_particles() {
+  const double h = dt_;
+  for (auto& a : partial_) a = StepPartial{};
+  bool rebuilt_any = false;
+  // One parallel region per step: every loop over particles uses the same block split, so each
+  // particle's arrays stay in one core's cache (on a 2-core VM a loop that moves them to the
+  // other core costs more than it saves); the pairs are split where the particles are.
+#pragma omp parallel num_threads(threads_) if (parallel_)
+  {
+    int t = 0, T = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    T = omp_get_num_threads();
+#endif
+    std::size_t b = 0, e = 0;
+    thread_range(t, T, b, e);
+    auto last = PhaseTimes::Clock::now();
+    auto lap = [&](Phase phase) {  // thread 0 keeps the split (after barriers: wall time)
+      if (t != 0) return;
+      const auto now = PhaseTimes::Clock::now();
+      times_.add(phase, now - last);
+      last = now;
+    };
+    before_forces(b, e);
+    partial_[t].stale = list_.stale(state_.particles, b, e);
+    lap(Phase::Integration);
+#pragma omp barrier
+#pragma omp single
+    {
+      bool stale = false;
+      for (const auto& a : partial_) stale = stale || a.stale;
+      if (stale) {
+        list_.build(state_.particles);
+        rebuilt_any = true;
+      }
+      if (stale || split_.size() != static_cast<std::size_t>(T) + 1) balance(T);
+    }
+    lap(Phase::Neighbours);
+    thread_range(t, T, b, e);
+    pair_pass<Incremental>(list_.first_begin[b], list_.first_begin[e], h, partial_[t]);
+#pragma omp barrier
+    particle_pass<Incremental>(b, e, h, partial_[t]);
+    lap(Phase::Contacts);
+    partial_[t].outside = after_forces(b, e);
+    lap(Phase::Integration);
+  }
+  (void)rebuilt_any;
+  StepPartial sum;
+  for (const auto& a : partial_) {
+    sum.outside = sum.outside || a.outside;
+    sum.contacts += a.contacts;
+    sum.sliding += a.sliding;
+    sum.wall_contacts += a.wall_contacts;
+    sum.max_ratio = std::max(sum.max_ratio, a.max_ratio);
+    sum.max_wall_ratio = std::max(sum.max_wall_ratio, a.max_wall_ratio);
+  }
+  diag_.max_overlap_ratio = sum.max_ratio;
+  diag_.max_wall_overlap_ratio = sum.max_wall_ratio;
+  diag_.pair_contacts = sum.contacts;
+  diag_.wall_contacts = sum.wall_contacts;
+  diag_.sliding_contacts = sum.sliding;
+  double ke = 0.0;
+  for (double k : block_ke_) ke += k;
+  diag_.kinetic_energy = ke;
+  outside_ = sum.outside;
 }
 
 void DemSolver::step() {
   Particles& P = state_.particles;
-  const double h = dt_;
-  integration_start_ = PhaseTimes::Clock::now();
   if (frozen_) {  // a fixed bed: the clock runs, nothing moves
     std::fill(P.vx.begin(), P.vx.end(), 0.0);
     std::fill(P.vy.begin(), P.vy.end(), 0.0);
@@ -272,101 +465,50 @@ void DemSolver::step() {
     diag_.kinetic_energy = 0.0;
     return;
   }
-  switch (integrator_) {
-    case Integrator::Newmark: {
-      // Eqs 24-28 with alpha = 1/2, beta = 1/4: predict, evaluate forces at the prediction,
-      // correct with the new acceleration.
-      const double hh4 = 0.25 * h * h;
-      for_particles([&](std::size_t i) {
-        P.x[i] += h * P.vx[i] + hh4 * P.ax[i];
-        P.y[i] += h * P.vy[i] + hh4 * P.ay[i];
-        P.vx[i] += 0.5 * h * P.ax[i];
-        P.vy[i] += 0.5 * h * P.ay[i];
-        P.w[i] += 0.5 * h * P.aw[i];
-      });
-      evaluate_forces_dispatch(h);
-      for_particles([&](std::size_t i) {
-        const double ax = P.fx[i] * P.inv_mass[i], ay = P.fy[i] * P.inv_mass[i];
-        const double aw = P.torque[i] * P.inv_inertia[i];
-        P.vx[i] += 0.5 * h * ax;
-        P.vy[i] += 0.5 * h * ay;
-        P.w[i] += 0.5 * h * aw;
-        P.x[i] += hh4 * ax;
-        P.y[i] += hh4 * ay;
-        P.ax[i] = ax;
-        P.ay[i] = ay;
-        P.aw[i] = aw;
-      });
-      break;
-    }
-    case Integrator::VelocityVerlet: {
-      // Kick half, drift, forces with the half-step velocity, kick half.
-      for_particles([&](std::size_t i) {
-        P.vx[i] += 0.5 * h * P.ax[i];
-        P.vy[i] += 0.5 * h * P.ay[i];
-        P.w[i] += 0.5 * h * P.aw[i];
-        P.x[i] += h * P.vx[i];
-        P.y[i] += h * P.vy[i];
-      });
-      evaluate_forces_dispatch(h);
-      for_particles([&](std::size_t i) {
-        P.ax[i] = P.fx[i] * P.inv_mass[i];
-        P.ay[i] = P.fy[i] * P.inv_mass[i];
-        P.aw[i] = P.torque[i] * P.inv_inertia[i];
-        P.vx[i] += 0.5 * h * P.ax[i];
-        P.vy[i] += 0.5 * h * P.ay[i];
-        P.w[i] += 0.5 * h * P.aw[i];
-      });
-      break;
-    }
-    case Integrator::SymplecticEuler: {
-      evaluate_forces_dispatch(h);
-      for_particles([&](std::size_t i) {
-        P.ax[i] = P.fx[i] * P.inv_mass[i];
-        P.ay[i] = P.fy[i] * P.inv_mass[i];
-        P.aw[i] = P.torque[i] * P.inv_inertia[i];
-        P.vx[i] += h * P.ax[i];
-        P.vy[i] += h * P.ay[i];
-        P.w[i] += h * P.aw[i];
-        P.x[i] += h * P.vx[i];
-        P.y[i] += h * P.vy[i];
-      });
-      break;
-    }
+  if (incremental_) {
+    step_particles<true>();
+  } else {
+    step_particles<false>();
   }
   state_.time = static_cast<double>(++state_.step) * dt_;
+  PhaseClock clock(times_);
   finish_step();
-  times_.add(Phase::Integration, PhaseTimes::Clock::now() - integration_start_);
+  clock.lap(Phase::Integration);
 }
 
 void DemSolver::finish_step() {
   const Particles& P = state_.particles;
   const std::size_t n = P.size();
-  double ke = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double inertia = 1.0 / P.inv_inertia[i];
-    ke += 0.5 * P.mass[i] * (P.vx[i] * P.vx[i] + P.vy[i] * P.vy[i]) +
-          0.5 * inertia * P.w[i] * P.w[i];
-  }
-  diag_.kinetic_energy = ke;
-  if (!std::isfinite(ke)) {
+  if (!std::isfinite(diag_.kinetic_energy)) {
     for (std::size_t i = 0; i < n; ++i)
       if (!std::isfinite(P.vx[i] + P.vy[i] + P.w[i] + P.x[i] + P.y[i]))
         fail("particle " + std::to_string(i) + " has a non-finite position or velocity (NaN)");
     fail("kinetic energy is not finite");
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    const double r = P.radius[i];
-    const char* where = nullptr;
-    if (!std::isfinite(P.x[i] + P.y[i])) where = "has a non-finite position (NaN)";
-    else if (P.x[i] < -r) where = "left the bed through the left wall";
-    else if (P.x[i] > width_ + r) where = "left the bed through the right wall";
-    else if (P.y[i] < -r) where = "left the bed through the bottom wall";
-    else if (P.y[i] > height_ + r) where = "left the bed through the top";
-    if (where) fail("particle " + std::to_string(i) + " " + where);
+  const double* x = P.x.data();
+  const double* y = P.y.data();
+  const double* r = P.radius.data();
+  if (outside_) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const char* where = nullptr;
+      if (!std::isfinite(x[i] + y[i])) where = "has a non-finite position (NaN)";
+      else if (x[i] < -r[i]) where = "left the bed through the left wall";
+      else if (x[i] > width_ + r[i]) where = "left the bed through the right wall";
+      else if (y[i] < -r[i]) where = "left the bed through the bottom wall";
+      else if (y[i] > height_ + r[i]) where = "left the bed through the top";
+      if (where) fail("particle " + std::to_string(i) + " " + where);
+    }
   }
   const double worst = std::max(diag_.max_overlap_ratio, 0.5 * diag_.max_wall_overlap_ratio);
   if (worst > overlap_limit_) {
+    // The first pair (in list order) with the largest overlap, for the message.
+    const NeighbourList& L = list_;
+    for (std::size_t k = 0; k < L.size(); ++k)
+      if (L.ratio[k] == diag_.max_overlap_ratio) {
+        worst_pair_i_ = L.i[k];
+        worst_pair_j_ = L.j[k];
+        break;
+      }
     std::ostringstream os;
     os.precision(3);
     if (diag_.max_overlap_ratio >= 0.5 * diag_.max_wall_overlap_ratio)

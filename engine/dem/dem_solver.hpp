@@ -56,6 +56,11 @@ class DemSolver {
   DemState exported_state() const;
   // Threads used inside a step (1: none); results are the same bits for any count.
   int threads() const { return threads_; }
+  // Thread t's particles [b, e) of T threads in the last step's split (whole blocks, balanced
+  // by work at each neighbour-list rebuild). Other per-particle loops use it too, so each
+  // particle's data stays on one core.
+  void thread_range(int t, int T, std::size_t& b, std::size_t& e) const;
+  const std::vector<std::size_t>& split() const { return split_; }
   const NeighbourList& neighbours() const { return list_; }
   const Particles& particles() const { return state_.particles; }
   Particles& particles() { return state_.particles; }
@@ -79,14 +84,23 @@ class DemSolver {
   std::uint64_t configuration_hash() const;
 
  private:
+  // One thread's share of a step's diagnostics (padded: threads write their own).
+  struct alignas(64) StepPartial {
+    int contacts = 0, sliding = 0, wall_contacts = 0;
+    double max_ratio = 0.0, max_wall_ratio = 0.0;
+    bool stale = false, outside = false;
+  };
   template <bool Incremental>
-  void evaluate_forces(double dtau);
-  void evaluate_forces_dispatch(double dtau);
+  void step_particles();
+  template <bool Incremental>
+  void pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPartial& acc);
+  template <bool Incremental>
+  void particle_pass(std::size_t b, std::size_t e, double dtau, StepPartial& acc);
+  void before_forces(std::size_t b, std::size_t e);
+  bool after_forces(std::size_t b, std::size_t e);
   void finish_step();
+  void balance(int threads);
   [[noreturn]] void fail(const std::string& what) const;
-
-  template <class F>
-  void for_particles(F&& f);
 
   DemState state_;
   NeighbourList list_;
@@ -104,7 +118,10 @@ class DemSolver {
   StepDiagnostics diag_;
   std::vector<double> overlap_;
   mutable PhaseTimes times_;
-  PhaseTimes::Clock::time_point integration_start_;
+  std::vector<StepPartial> partial_;  // per thread
+  std::vector<double> block_ke_;      // J, per block of particles (core/threads.hpp)
+  bool outside_ = false;
+  std::vector<std::size_t> split_;    // thread t's particles: [split_[t], split_[t + 1])              // a particle left the box in the last step
   int worst_pair_i_ = -1, worst_pair_j_ = -1;
 };
 

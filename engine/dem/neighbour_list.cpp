@@ -17,15 +17,22 @@ void NeighbourList::configure(double width, double height, double dmax, double s
   built_ = false;
 }
 
-bool NeighbourList::stale(const Particles& p) const {
+bool NeighbourList::stale(const Particles& p) const { return stale(p, 0, p.size()); }
+
+bool NeighbourList::stale(const Particles& p, std::size_t begin, std::size_t end) const {
   if (!built_) return true;
   const double limit = 0.25 * skin_ * skin_;  // (skin / 2)^2
-  const std::size_t n = p.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const double dx = p.x[k] - x_ref_[k], dy = p.y[k] - y_ref_[k];
-    if (dx * dx + dy * dy > limit) return true;
+  const double* x = p.x.data();
+  const double* y = p.y.data();
+  const double* xr = x_ref_.data();
+  const double* yr = y_ref_.data();
+  // No early exit: a branch-free loop that vectorises is faster over a few thousand particles.
+  bool moved = false;
+  for (std::size_t k = begin; k < end; ++k) {
+    const double dx = x[k] - xr[k], dy = y[k] - yr[k];
+    moved |= dx * dx + dy * dy > limit;
   }
-  return false;
+  return moved;
 }
 
 void NeighbourList::import_history(const PairContacts& saved) {
@@ -49,54 +56,65 @@ void NeighbourList::build(const Particles& p, const PairContacts* seed) {
   if (!seed && seeded_) seed = &seed_;
   const std::size_t n = p.size();
   grid_.build(p.x, p.y);
-  keys_.clear();
   const double* x = p.x.data();
   const double* y = p.y.data();
   const double* r = p.radius.data();
-  grid_.for_each_candidate_pair([&](int a, int b) {
-    const double dx = x[b] - x[a], dy = y[b] - y[a];
-    const double reach = r[a] + r[b] + skin_;
-    if (dx * dx + dy * dy >= reach * reach) return;
-    const auto lo = static_cast<std::uint64_t>(std::min(a, b));
-    const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-    keys_.push_back(lo << 32 | hi);
-  });
-  std::sort(keys_.begin(), keys_.end());
+  // Candidates in (i, j) order straight away: for each i in turn, the partners j > i in the nine
+  // cells around it, sorted (a handful). No sort of the whole list, no allocation once warm.
+  ni_.clear();
+  nj_.clear();
+  for (std::size_t a = 0; a < n; ++a) {
+    near_.clear();
+    const double xa = x[a], ya = y[a], ra = r[a] + skin_;
+    grid_.for_each_near(xa, ya, [&](std::int32_t b) {
+      if (static_cast<std::size_t>(b) <= a) return;
+      const double dx = x[b] - xa, dy = y[b] - ya;
+      const double reach = ra + r[b];
+      if (dx * dx + dy * dy < reach * reach) near_.push_back(b);
+    });
+    std::sort(near_.begin(), near_.end());
+    for (std::int32_t b : near_) {
+      ni_.push_back(static_cast<std::int32_t>(a));
+      nj_.push_back(b);
+    }
+  }
+  const std::size_t m = ni_.size();
 
   // Merge the old history (sorted by pair) into the new slots.
-  std::vector<std::int32_t> ni(keys_.size()), nj(keys_.size());
-  std::vector<double> ndn(keys_.size(), 0.0), ndt(keys_.size(), 0.0);
-  std::vector<std::uint8_t> nt(keys_.size(), 0);
+  ndn_.assign(m, 0.0);
+  ndt_.assign(m, 0.0);
+  nt_.assign(m, 0);
   const std::vector<std::int32_t>& oi = seed ? seed->i : i;
   const std::vector<std::int32_t>& oj = seed ? seed->j : j;
   const std::vector<double>& odn = seed ? seed->dn : dn;
   const std::vector<double>& odt = seed ? seed->dt : dt;
+  auto key = [](std::int32_t u, std::int32_t v) {
+    return static_cast<std::uint64_t>(u) << 32 | static_cast<std::uint32_t>(v);
+  };
   std::size_t o = 0;
-  for (std::size_t k = 0; k < keys_.size(); ++k) {
-    ni[k] = static_cast<std::int32_t>(keys_[k] >> 32);
-    nj[k] = static_cast<std::int32_t>(keys_[k] & 0xffffffffu);
-    while (o < oi.size() && (static_cast<std::uint64_t>(oi[o]) << 32 | static_cast<std::uint32_t>(oj[o])) < keys_[k]) ++o;
-    if (o < oi.size() && oi[o] == ni[k] && oj[o] == nj[k]) {
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::uint64_t kk = key(ni_[k], nj_[k]);
+    while (o < oi.size() && key(oi[o], oj[o]) < kk) ++o;
+    if (o < oi.size() && oi[o] == ni_[k] && oj[o] == nj_[k]) {
       const bool was_touching = seed ? true : touching[o] != 0;
       if (was_touching) {
-        ndn[k] = odn[o];
-        ndt[k] = odt[o];
-        nt[k] = 1;
+        ndn_[k] = odn[o];
+        ndt_[k] = odt[o];
+        nt_[k] = 1;
       }
     }
   }
-  i.swap(ni);
-  j.swap(nj);
-  dn.swap(ndn);
-  dt.swap(ndt);
-  touching.swap(nt);
+  i.swap(ni_);
+  j.swap(nj_);
+  dn.swap(ndn_);
+  dt.swap(ndt_);
+  touching.swap(nt_);
   seeded_ = false;
   seed_.clear();
-  const std::size_t m = i.size();
-  fx.assign(m, 0.0);
-  fy.assign(m, 0.0);
-  ft.assign(m, 0.0);
-  ratio.assign(m, 0.0);
+  fx.resize(m);
+  fy.resize(m);
+  ft.resize(m);
+  ratio.resize(m);
 
   // Gather lists: entries are sorted by i, so each particle's "first" entries are contiguous;
   // its "second" entries come from a stable counting sort by j.
@@ -114,8 +132,8 @@ void NeighbourList::build(const Particles& p, const PairContacts* seed) {
   counts_.assign(second_begin.begin(), second_begin.end() - 1);
   for (std::size_t k = 0; k < m; ++k) second_pair[counts_[j[k]]++] = static_cast<std::int32_t>(k);
 
-  x_ref_ = p.x;
-  y_ref_ = p.y;
+  x_ref_.assign(p.x.begin(), p.x.end());
+  y_ref_.assign(p.y.begin(), p.y.end());
   built_ = true;
   ++builds_;
 }

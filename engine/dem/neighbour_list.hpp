@@ -23,6 +23,8 @@ class NeighbourList {
 
   // True when a particle has moved more than half the skin since the last build (or never built).
   bool stale(const Particles& p) const;
+  // The same test for particles [begin, end) only (a thread's share).
+  bool stale(const Particles& p, std::size_t begin, std::size_t end) const;
   // Rebuilds the candidates at the particles' current positions, carrying over the history of
   // pairs that remain (or taking it from `seed`, a saved history, when given).
   void build(const Particles& p, const PairContacts* seed = nullptr);
@@ -52,8 +54,11 @@ class NeighbourList {
   bool seeded_ = false;
   PairContacts seed_;
   std::int64_t builds_ = 0;
-  std::vector<std::uint64_t> keys_;
   std::vector<std::int32_t> counts_;
+  // Scratch of build(), swapped with the live arrays (capacity kept: no allocation once warm).
+  std::vector<std::int32_t> ni_, nj_, near_;
+  std::vector<double> ndn_, ndt_;
+  std::vector<std::uint8_t> nt_;
 };
 
 }  // namespace fluidbed

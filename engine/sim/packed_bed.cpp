@@ -55,7 +55,7 @@ std::string packed_bed_state(const Settings& bed,
   const Settings packing = packing_settings_for(bed);
   // The key is every setting of the packing run, so a changed particle or contact value packs anew.
   // The model version goes in too: a change to the physics code that moves results bumps it.
-  const std::string text = "model version 2\n" + to_toml(packing);
+  const std::string text = "model version 3\n" + to_toml(packing);
   Fnv1a h;
   h.bytes(text.data(), text.size());
   char name[64];

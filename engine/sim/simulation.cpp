@@ -87,18 +87,19 @@ void Simulation::step() {
   if (!gas_) return;
   PhaseClock clock(dem_.phase_times());
   Particles& p = dem_.particles();
-  coupler_->accumulate_drag(p);  // the drag the particles felt in this step
+  const auto& split = dem_.split();  // each particle's forces where its data is
+  coupler_->accumulate_drag(p, split);  // the drag the particles felt in this step
   if (++since_gas_step_ >= settings_.coupling.particle_steps_per_gas_step) {
     gas_step(clock);
   }
-  coupler_->compute_fluid_forces(p);  // for the next step
+  coupler_->compute_fluid_forces(p, split);  // for the next step
   clock.lap(Phase::Coupling);
 }
 
 void Simulation::gas_step(PhaseClock& clock) {
   const double dt = since_gas_step_ * settings_.time.dt;
   since_gas_step_ = 0;
-  const auto& eps = coupler_->compute_porosity(dem_.particles(), time());
+  const auto& eps = coupler_->compute_porosity(dem_.particles(), time(), dem_.split());
   CouplingDiagnostics& d = coupling_diag_;
   coupler_->take_interaction_force(fx_, fy_, d.drag_total_x, d.drag_total_y);
   clock.lap(Phase::Coupling);
