@@ -63,9 +63,11 @@ void validate_gas(const GasGrid& g, const GasParams& p) {
   if (!(p.superficial_velocity >= 0.0) || !std::isfinite(p.superficial_velocity))
     throw InputError(
         field_error("superficial_velocity", p.superficial_velocity, "must be >= 0 (m/s)"));
-  if (p.inlet == "jet" && !(p.jet_width > 0.0 && p.jet_width <= g.width)) {
+  if (p.inlet == "jet" && p.jets < 1)
+    throw InputError(field_error("jets", p.jets, "must be >= 1"));
+  if (p.inlet == "jet" && !(p.jet_width > 0.0 && p.jet_width * p.jets <= g.width)) {
     std::ostringstream rule;
-    rule << "must be > 0 and no wider than the bed (" << g.width << " m)";
+    rule << "must be > 0 and its jets no wider than the bed (" << g.width << " m)";
     throw InputError(field_error("jet_width", p.jet_width, rule.str()));
   }
   if (!(p.tolerance > 0.0) || !std::isfinite(p.tolerance))
@@ -111,13 +113,16 @@ GasSolver::GasSolver(const GasGrid& grid, const GasParams& params)
   if (params_.inlet == "uniform") {
     std::fill(inlet_profile_.begin(), inlet_profile_.end(), 1.0);
   } else if (params_.inlet == "jet") {
-    const double x0 = 0.5 * (grid_.width - params_.jet_width);
-    const double x1 = 0.5 * (grid_.width + params_.jet_width);
-    for (int i = 0; i < nx_; ++i) {
-      double frac = (std::min(x1, (i + 1) * dx_) - std::max(x0, i * dx_)) / dx_;
-      if (frac < 1e-9) frac = 0.0;
-      if (frac > 1.0 - 1e-9) frac = 1.0;
-      inlet_profile_[i] = frac * grid_.width / params_.jet_width;
+    const double open = params_.jets * params_.jet_width;
+    for (int k = 0; k < params_.jets; ++k) {
+      const double centre = (k + 0.5) * grid_.width / params_.jets;
+      const double x0 = centre - 0.5 * params_.jet_width, x1 = centre + 0.5 * params_.jet_width;
+      for (int i = 0; i < nx_; ++i) {
+        double frac = (std::min(x1, (i + 1) * dx_) - std::max(x0, i * dx_)) / dx_;
+        if (frac < 1e-9) continue;
+        if (frac > 1.0 - 1e-9) frac = 1.0;
+        inlet_profile_[i] += frac * grid_.width / open;
+      }
     }
   }
 
@@ -163,7 +168,7 @@ GasSolver::GasSolver(const GasGrid& grid, const GasParams& params)
 }
 
 double GasSolver::jet_velocity() const {
-  return params_.inlet == "jet" ? s_.superficial_velocity * grid_.width / params_.jet_width
+  return params_.inlet == "jet" ? s_.superficial_velocity * grid_.width / (params_.jets * params_.jet_width)
                                 : s_.superficial_velocity;
 }
 

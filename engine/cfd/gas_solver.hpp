@@ -56,7 +56,8 @@ struct GasParams {
   double gravity = 9.81;              // m/s^2, along -y
   std::string inlet = "jet";          // "jet", "uniform" or "none" (closed bottom)
   double superficial_velocity = 2.8;  // m/s, mean over the whole bottom
-  double jet_width = 0.01;            // m, slot centred on the bottom (jet: U_jet = U W / width)
+  double jet_width = 0.01;            // m, each slot (jet: U_jet = U W / (jets jet_width))
+  int jets = 1;                       // slots centred at (k + 1/2) W / jets
   // SIMPLE stops when sum over cells |continuity residual| (m^3/s) is below tolerance times a
   // reference flow: the inflow U W dz, or when larger the porosity change sum |d eps/dt| dV, or
   // at least 1 mm/s over the bottom (a floor for a closed box at rest).
@@ -135,7 +136,7 @@ class GasSolver {
   const GasParams& params() const { return params_; }
   double time() const { return s_.time; }
   double superficial_velocity() const { return s_.superficial_velocity; }
-  double jet_velocity() const;  // m/s, U W / jet_width for a jet inlet, U otherwise
+  double jet_velocity() const;  // m/s, U W / (jets jet_width) for a jet inlet, U otherwise
 
   const std::vector<double>& u() const { return s_.u; }         // m/s, (nx + 1) * ny
   const std::vector<double>& v() const { return s_.v; }         // m/s, nx * (ny + 1)

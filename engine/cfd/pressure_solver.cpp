@@ -44,7 +44,8 @@ PressureSolver::PressureSolver(int nx, int ny)
       diag_(n_, 0.0),
       east_(n_, 0.0),
       north_(n_, 0.0),
-      ldlt_(nx, ny),
+      transposed_(nx > ny),
+      ldlt_(nx > ny ? ny : nx, nx > ny ? nx : ny),
       r_(n_, 0.0),
       z_(n_, 0.0),
       p_(n_, 0.0),
@@ -70,7 +71,25 @@ void PressureSolver::refactorize() {
   assemble(fu_, fv_);
   ++factorizations_;
   factored_ = true;
-  if (!ldlt_.factorize(diag_.data(), east_.data(), north_.data()))
+  bool ok = false;
+  if (transposed_) {
+    // Cell (i, j) is c' = i ny + j: its "east" neighbour in the band is (i, j + 1) (the north
+    // coupling), its "north" one is (i + 1, j) (the east coupling).
+    t_diag_.resize(n_);
+    t_east_.resize(n_);
+    t_north_.resize(n_);
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i) {
+        const int c = j * nx_ + i, t = i * ny_ + j;
+        t_diag_[t] = diag_[c];
+        t_east_[t] = north_[c];
+        t_north_[t] = east_[c];
+      }
+    ok = ldlt_.factorize(t_diag_.data(), t_east_.data(), t_north_.data());
+  } else {
+    ok = ldlt_.factorize(diag_.data(), east_.data(), north_.data());
+  }
+  if (!ok)
     throw SimulationFailure(
         "gas pressure-correction matrix is not positive definite (NaN or negative face "
         "coefficient)");
@@ -120,6 +139,19 @@ void PressureSolver::multiply(const double* x, double* y) const {
   }
 }
 
+void PressureSolver::precondition(const double* r, double* z) {
+  if (!transposed_) {
+    ldlt_.solve(r, z);
+    return;
+  }
+  t_r_.resize(n_);
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) t_r_[i * ny_ + j] = r[j * nx_ + i];
+  ldlt_.solve(t_r_.data(), t_r_.data());
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) z[j * nx_ + i] = t_r_[i * ny_ + j];
+}
+
 PressureSolveReport PressureSolver::solve(const double* b, double* x, double rel_tol,
                                           double abs_tol, int max_iterations) {
   PressureSolveReport rep;
@@ -133,7 +165,7 @@ PressureSolveReport PressureSolver::solve(const double* b, double* x, double rel
     return rep;
   }
   const double target = std::max(rel_tol * bnorm, abs_tol);
-  ldlt_.solve(r_.data(), z_.data());
+  precondition(r_.data(), z_.data());
   p_ = z_;
   double rz = dot(r_, z_);
   double rnorm = bnorm;
@@ -149,7 +181,7 @@ PressureSolveReport PressureSolver::solve(const double* b, double* x, double rel
     ++rep.iterations;
     rnorm = std::sqrt(dot(r_, r_));
     if (rnorm <= target) break;
-    ldlt_.solve(r_.data(), z_.data());
+    precondition(r_.data(), z_.data());
     const double rz_new = dot(r_, z_);
     const double beta = rz_new / rz;
     rz = rz_new;

@@ -58,8 +58,15 @@ class PressureSolver {
   std::vector<double> cu_, cv_;              // current coefficients
   std::vector<double> fu_, fv_;              // coefficients of the factorization
   std::vector<double> diag_, east_, north_;  // the five-point matrix (current or factored)
+  // The factorization's band runs along the shorter side of the grid: a bed wider than tall
+  // (many jets side by side) is factored with its cells numbered column by column, so the cost
+  // per cell stays 2 min(nx, ny) and grows with the bed like the particle count.
+  bool transposed_ = false;
   BandedLdlt ldlt_;
+  std::vector<double> t_diag_, t_east_, t_north_, t_r_;  // the transposed copies (when used)
   std::vector<double> r_, z_, p_, q_;  // PCG work vectors
+
+  void precondition(const double* r, double* z);
   int factorizations_ = 0;
   bool factored_ = false;
 };

@@ -91,7 +91,10 @@ struct InletSettings {
   // distributor over the whole bottom; "none": a closed bottom (gas at rest).
   std::string kind = "jet";
   double superficial_velocity = 2.8;  // m/s, mean over the bottom (jet: U width / jet_width)
-  double jet_width = 0.01;            // m
+  double jet_width = 0.01;            // m, width of each jet's slot
+  // Jets along the bottom, slot k centred at (k + 1/2) width / jets (1: the paper's central
+  // jet; a bed n times wider with n jets is n paper beds side by side).
+  int jets = 1;
 };
 
 struct CouplingSettings {
@@ -201,6 +204,7 @@ void visit_fields(InletSettings& s, V&& v) {
   v("kind", s.kind, "");
   v("superficial_velocity", s.superficial_velocity, "m/s");
   v("jet_width", s.jet_width, "m");
+  v("jets", s.jets, "");
 }
 template <class V>
 void visit_fields(CouplingSettings& s, V&& v) {

@@ -98,7 +98,9 @@ void validate(const Settings& s) {
   one_of("inlet.kind", s.inlet.kind, {"jet", "uniform", "none"});
   non_negative("inlet.superficial_velocity", s.inlet.superficial_velocity);
   positive("inlet.jet_width", s.inlet.jet_width);
-  if (s.inlet.jet_width > d.width) refuse("inlet.jet_width", "is wider than domain.width");
+  if (s.inlet.jets < 1) refuse("inlet.jets", "must be at least 1");
+  if (s.inlet.jet_width * s.inlet.jets > d.width)
+    refuse("inlet.jet_width", "times inlet.jets is wider than domain.width");
   if (s.coupling.particle_steps_per_gas_step < 1)
     refuse("coupling.particle_steps_per_gas_step", "must be at least 1");
 

@@ -48,6 +48,7 @@ GasParams gas_params_for(const Settings& s) {
   p.inlet = s.inlet.kind;
   p.superficial_velocity = s.inlet.superficial_velocity;
   p.jet_width = s.inlet.jet_width;
+  p.jets = s.inlet.jets;
   p.tolerance = s.gas.tolerance;
   p.max_iterations = s.gas.max_iterations;
   // The drag of the lower half of a bottom-row cell acts where the inflow velocity is fixed: it is

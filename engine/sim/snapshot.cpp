@@ -33,6 +33,7 @@ void take_snapshot(const Simulation& sim, Snapshot& out) {
   if (const GasSolver* g = sim.gas()) {
     out.inlet_kind = s.inlet.kind;
     out.jet_width = s.inlet.jet_width;
+    out.jets = s.inlet.jets;
     out.superficial_velocity = g->superficial_velocity();
     out.jet_velocity = g->jet_velocity();
     out.nx = g->grid().nx;

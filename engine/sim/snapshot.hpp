@@ -21,7 +21,8 @@ struct Snapshot {
   double width = 0.0, height = 0.0, thickness = 0.0;  // m
   bool top_wall = false;
   std::string inlet_kind;               // "jet", "uniform", "none" (or "" without gas)
-  double jet_width = 0.0;               // m
+  double jet_width = 0.0;               // m, each slot
+  int jets = 1;                         // slots centred at (k + 1/2) width / jets
   double superficial_velocity = 0.0;    // m/s
   double jet_velocity = 0.0;            // m/s
   double dp = 0.0;                      // Pa, bottom to top on the symmetry line
