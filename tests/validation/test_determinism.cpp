@@ -84,8 +84,9 @@ TEST(Determinism, CoupledSaveLoadContinueIsBitExact) {
 }
 
 TEST(Determinism, SameBitsForOneAndTwoThreads) {
-  // The particle step gathers pair forces in a fixed order and the porosity is summed in
-  // particle order: the thread count changes the speed, not a bit of the result.
+  // The particle step gathers pair forces in a fixed order, and sums over particles (energy,
+  // porosity, drag per cell) are taken block by block and added in block order: the thread count
+  // changes the speed, not a bit of the result. 600 particles: 10 blocks, split unevenly by work.
   Settings s = small_bed();
   s.domain.width = 0.15;
   s.domain.height = 0.9;
