@@ -136,6 +136,13 @@ class GasSolver {
   const GasParams& params() const { return params_; }
   double time() const { return s_.time; }
   double superficial_velocity() const { return s_.superficial_velocity; }
+  // 1/s: the largest face speed over the smallest cell side, so that dt times it is the CFL number
+  // a gas step of dt would start from.
+  double max_speed_per_cell() const {
+    int face = 0;
+    bool is_u = true;
+    return max_cfl(1.0, face, is_u);
+  }
   double jet_velocity() const;  // m/s, U W / (jets jet_width) for a jet inlet, U otherwise
 
   const std::vector<double>& u() const { return s_.u; }         // m/s, (nx + 1) * ny

@@ -6,6 +6,7 @@
 // the neighbour list (one slot per candidate pair) and is exported to this form for state files
 // and hashes. WallHistory keeps one slot per particle and wall.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace fluidbed {
@@ -26,6 +27,23 @@ struct WallHistory {
   int walls = 0;
   std::vector<std::uint8_t> active;  // [i * walls + w]
   std::vector<double> dn, dt;        // m
+
+  // The same history with walls appended (a state saved without a top wall used in a scene with
+  // one): the new walls start untouched.
+  void add_walls(int wall_count) {
+    if (wall_count <= walls) return;
+    const std::size_t n = walls > 0 ? active.size() / static_cast<std::size_t>(walls) : 0;
+    WallHistory wider;
+    wider.resize(n, wall_count);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < walls; ++c) {
+        const std::size_t from = i * walls + c, to = i * wall_count + c;
+        wider.active[to] = active[from];
+        wider.dn[to] = dn[from];
+        wider.dt[to] = dt[from];
+      }
+    *this = std::move(wider);
+  }
 
   void resize(std::size_t n, int wall_count) {
     walls = wall_count;

@@ -101,7 +101,9 @@ struct CouplingSettings {
   // Model A (Feng & Yu 2004; model.md 2.1): particles feel drag and -V grad p. false: the paper's
   // printed form, drag alone.
   bool pressure_gradient_force = true;
-  int particle_steps_per_gas_step = 1;  // the paper: 1
+  // The gas is solved every this many particle steps (the paper: 1), or sooner while it is fast:
+  // a gas step whose CFL number would exceed 0.8 is taken early (Simulation::kGasCflTarget).
+  int particle_steps_per_gas_step = 1;
 };
 
 struct DiagnosticsSettings {

@@ -28,6 +28,10 @@ struct CouplingDiagnostics {
 
 class Simulation {
  public:
+  // A sub-stepped gas (coupling.particle_steps_per_gas_step > 1) steps early rather than let its
+  // CFL number exceed this (the gas solver refuses a step above 1).
+  static constexpr double kGasCflTarget = 0.8;
+
   explicit Simulation(const Settings& s);
 
   void step();
@@ -61,12 +65,14 @@ class Simulation {
 
  private:
   void gas_step(PhaseClock& clock);
+  void note_inlet_speed();
 
   Settings settings_;
   DemSolver dem_;
   std::unique_ptr<GasSolver> gas_;
   std::unique_ptr<Coupler> coupler_;
   int since_gas_step_ = 0;
+  double gas_speed_ = 0.0;  // 1/s, GasSolver::max_speed_per_cell after the last gas step
   std::vector<double> initial_y_;
   std::vector<double> fx_, fy_;  // scratch: F per cell
   CouplingDiagnostics coupling_diag_;

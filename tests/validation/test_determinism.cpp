@@ -110,3 +110,32 @@ TEST(Determinism, StateFileRejectsGarbage) {
   EXPECT_THROW(sim.load_state((dir / "bad.state").string()), InputError);
   EXPECT_THROW(sim.load_state((dir / "missing.state").string()), InputError);
 }
+
+TEST(Determinism, StateWithoutLidStartsASceneWithOne) {
+  // A bed packed open at the top starts a scene with a top wall (the teaching scene's screen):
+  // the top wall's history starts empty and the particles continue exactly as in the open bed
+  // while none of them reaches the lid.
+  Settings s = small_bed();
+  s.domain.height = 0.3;
+  Simulation packed(s);
+  run_steps(packed, 3000);
+  const auto dir = fluidbed::testing::temp_dir("lid");
+  const std::string path = (dir / "open.state").string();
+  packed.save_state(path);
+
+  Settings open = s, lid = s;
+  for (Settings* t : {&open, &lid}) {
+    t->particles.placement = "state";
+    t->particles.state_file = path;
+  }
+  lid.domain.top_wall = true;
+  Simulation a(open), b(lid);
+  EXPECT_EQ(b.dem().walls().size(), a.dem().walls().size() + 1);
+  EXPECT_EQ(b.dem().state().walls.walls, 4);
+  run_steps(a, 2000);
+  run_steps(b, 2000);
+  for (std::size_t i = 0; i < a.particle_count(); ++i) {
+    ASSERT_EQ(a.dem().particles().x[i], b.dem().particles().x[i]) << i;
+    ASSERT_EQ(a.dem().particles().y[i], b.dem().particles().y[i]) << i;
+  }
+}
