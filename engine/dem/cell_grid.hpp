@@ -79,9 +79,11 @@ class CellGrid {
 
  private:
   int cell_index(double x, double y) const {
-    // Clamp in floating point first: a particle far outside must not overflow the cast.
-    const int cx = static_cast<int>(std::clamp(x * hx_inv_, 0.0, nx_ - 1.0));
-    const int cy = static_cast<int>(std::clamp(y * hy_inv_, 0.0, ny_ - 1.0));
+    // Clamp in floating point first: a particle far outside must not overflow the cast, and a
+    // NaN (a run about to fail in words) lands in cell 0 rather than anywhere.
+    const double fx = x * hx_inv_, fy = y * hy_inv_;
+    const int cx = fx >= 0.0 ? static_cast<int>(std::min(fx, nx_ - 1.0)) : 0;
+    const int cy = fy >= 0.0 ? static_cast<int>(std::min(fy, ny_ - 1.0)) : 0;
     return cy * nx_ + cx;
   }
 

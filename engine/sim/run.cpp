@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <sstream>
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -14,6 +15,46 @@
 #include "experiments/packing_metrics.hpp"
 
 namespace fluidbed {
+namespace {
+
+// RunOptions' checks after a gas step (see run.hpp).
+void check_gas_step(const Simulation& sim, const RunOptions& o) {
+  const double cfl = sim.coupling_diagnostics().gas.max_cfl;
+  if (!(cfl <= o.cfl_limit)) {
+    std::ostringstream os;
+    os.precision(4);
+    os << "gas CFL number " << cfl << " above the limit " << o.cfl_limit << " at t = "
+       << sim.time() << " s: the gas step (time.dt x coupling.particle_steps_per_gas_step) is "
+       << "too long for the gas velocity";
+    throw SimulationFailure(os.str());
+  }
+  const std::vector<double>& eps = sim.coupler()->porosity();
+  const int nx = sim.settings().gas.cells_x;
+  for (std::size_t c = 0; c < eps.size(); ++c)
+    if (!(eps[c] >= o.porosity_min && eps[c] <= 1.0 + 1e-12)) {
+      std::ostringstream os;
+      os.precision(4);
+      os << "porosity " << eps[c] << " in gas cell (" << c % static_cast<std::size_t>(nx) << ", "
+         << c / static_cast<std::size_t>(nx) << ") at t = " << sim.time() << " s is outside ["
+         << o.porosity_min << ", 1]: particles overlap far more than a packing allows";
+      throw SimulationFailure(os.str());
+    }
+}
+
+// A starting state that is not finite (a NaN from a state file or a setting) is refused before
+// the first step, which could not even sort it into the neighbour grid.
+void check_start(const Simulation& sim) {
+  const Particles& p = sim.dem().particles();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!std::isfinite(p.x[i] + p.y[i] + p.vx[i] + p.vy[i] + p.w[i])) {
+      std::ostringstream os;
+      os << "particle " << i << " starts with a non-finite position or velocity (NaN) at t = "
+         << sim.time() << " s";
+      throw SimulationFailure(os.str());
+    }
+}
+
+}  // namespace
 
 RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   const Settings& s = sim.settings();
@@ -36,6 +77,9 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   int simple_max = 0;
   double residual_max = 0.0, cfl_max = 0.0, third_law_max = 0.0;
   double fluid_fx_sum = 0.0, fluid_fy_sum = 0.0;
+  std::int64_t fluid_samples = 0;
+  double bed_height_sum = 0.0;  // m, summed over the rows after start-up (beds)
+  std::int64_t bed_height_samples = 0;
   int last_gas_steps = sim.has_gas() ? sim.coupling_diagnostics().gas_steps : 0;
   TimeseriesRow pending;
   const std::int64_t first_step = sim.steps();
@@ -46,6 +90,7 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   };
 
+  check_start(sim);
   while (sim.steps() < last_step) {
     sim.step();
     const StepDiagnostics& d = sim.dem().diagnostics();
@@ -70,16 +115,12 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
         cfl_max = std::max(cfl_max, c.gas.max_cfl);
         third_law_max = std::max(third_law_max, c.third_law_error);
         pending.max_cfl = std::max(pending.max_cfl, c.gas.max_cfl);
+        check_gas_step(sim, options);
       }
       if (t > startup) {
         dp_sum += dp;
         dp_sq += dp * dp;
         ++dp_samples;
-        const Particles& pp = sim.dem().particles();
-        for (std::size_t i = 0; i < pp.size(); ++i) {
-          fluid_fx_sum += pp.ext_fx[i];
-          fluid_fy_sum += pp.ext_fy[i];
-        }
       }
     }
     if (bounces) bounces->observe(sim.dem());
@@ -98,9 +139,21 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
       if (sim.has_gas()) {
         pending.simple_iterations = sim.coupling_diagnostics().gas.simple_iterations;
         pending.mass_residual = sim.coupling_diagnostics().gas.mass_residual;
-        double fy = 0.0;
+        // Sampled at the rows only: a loop over every particle at every step would cost as
+        // much as a fifth of a step and pull each thread's particles to one core.
+        double fx = 0.0, fy = 0.0;
+        for (double f : sim.dem().particles().ext_fx) fx += f;
         for (double f : sim.dem().particles().ext_fy) fy += f;
         pending.fluid_force_y = fy;
+        if (t > startup) {
+          fluid_fx_sum += fx;
+          fluid_fy_sum += fy;
+          ++fluid_samples;
+        }
+      }
+      if (t > startup && s.scene.kind == "bed") {
+        bed_height_sum += measure_packing(sim.dem().particles(), s.domain.width, s.domain.thickness).bed_height;
+        ++bed_height_samples;
       }
       result.rows.push_back(pending);
       pending = TimeseriesRow{};
@@ -147,7 +200,8 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
     const double mean = dp_sum / n;
     j["dp_max_time_s"] = dp_max_time;
     j["dp_std_pa"] = std::sqrt(std::max(dp_sq / n - mean * mean, 0.0));
-    j["fluid_force_mean_n"] = {fluid_fx_sum / n, fluid_fy_sum / n};
+    const double nf = static_cast<double>(std::max<std::int64_t>(fluid_samples, 1));
+    j["fluid_force_mean_n"] = {fluid_fx_sum / nf, fluid_fy_sum / nf};
     const GasSolver& g = *sim.gas();
     j["superficial_velocity_m_s"] = g.superficial_velocity();
     j["jet_velocity_m_s"] = g.jet_velocity();
@@ -199,6 +253,8 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
     j["bounce_restitutions"] = e;
     j["bounce_heights_m"] = apex;
   }
+  if (bed_height_samples > 0)  // the bubbling bed's mean height after start-up (rows)
+    j["bed_height_mean_m"] = bed_height_sum / static_cast<double>(bed_height_samples);
   if (s.scene.kind == "packing" || s.scene.kind == "bed") {
     const PackingMetrics m = measure_packing(p, s.domain.width, s.domain.thickness);
     j["bed_height_m"] = m.bed_height;

@@ -33,6 +33,13 @@ struct RunOptions {
   // Called after every step with the simulation (read only): frames, files and panels at exact
   // simulated times. It must not change the run; its cost counts in the wall time.
   std::function<void(const Simulation&)> on_step;
+  // Checks after every gas step, on top of the solvers' own, each failing the run in words:
+  // the gas CFL number above cfl_limit (a gas step longer than the flow can be followed), and a
+  // cell porosity outside [porosity_min, 1]. Spheres in a slab one diameter thick pack no denser
+  // than porosity 0.395 (hexagonal, 1 - pi / (3 sqrt 3)); 0.3 needs every sphere to overlap its
+  // neighbours by 7 % of a diameter or more.
+  double cfl_limit = 1.0;
+  double porosity_min = 0.3;
 };
 
 struct RunResult {

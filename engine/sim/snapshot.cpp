@@ -56,8 +56,17 @@ void take_snapshot(const Simulation& sim, Snapshot& out) {
 
 std::shared_ptr<Snapshot> SnapshotChannel::acquire() {
   std::lock_guard lock(mutex_);
-  // Reuse the spare buffer when no reader still holds it.
-  if (spare_ && spare_.use_count() == 1) return std::move(spare_);
+  // Reuse the spare buffer when no reader still holds it. use_count() alone is a relaxed load: it
+  // would not order the last reader's reads before our writes (a data race, which the thread
+  // sanitizer reports). Copying the pointer first is an acquire-release on the same count, after
+  // the reader's release of it. Readers cannot take the spare again (they get latest_ only).
+  if (spare_) {
+    std::shared_ptr<Snapshot> probe = spare_;
+    if (probe.use_count() == 2) {
+      probe.reset();
+      return std::move(spare_);
+    }
+  }
   return std::make_shared<Snapshot>();
 }
 
