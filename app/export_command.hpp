@@ -1,6 +1,6 @@
 #pragma once
-// fluidbed export SCENE --to liggghts DIR: the scene as another code's case (see
-// engine/io/liggghts_export.hpp for what the LIGGGHTS deck keeps and leaves out).
+// fluidbed export SCENE --to liggghts|openfoam DIR: the scene as another code's case (see
+// engine/io/liggghts_export.hpp and openfoam_export.hpp for what each keeps and leaves out).
 #include <string>
 #include <vector>
 
@@ -9,7 +9,7 @@ namespace fluidbed::app {
 struct ExportArgs {
   std::string scene;                   // scene file
   std::vector<std::string> overrides;  // --set section.key=value
-  std::string to;                      // target code: "liggghts" ("openfoam" is planned)
+  std::string to;                      // target code: "liggghts" or "openfoam"
   std::string dir;                     // output folder, created when missing
 };
 

@@ -5,6 +5,9 @@
 
 #include "commands.hpp"
 #include "export_command.hpp"
+#include "study_command.hpp"
+#include "bench_peer.hpp"
+#include "view_command.hpp"
 #include "core/errors.hpp"
 
 namespace {
@@ -50,6 +53,8 @@ int main(int argc, char** argv) {
   fluidbed::app::SweepArgs sweep_args;
   fluidbed::app::ReproduceArgs reproduce_args;
   fluidbed::app::ExportArgs export_args;
+  fluidbed::app::StudyArgs study_args;
+  fluidbed::app::ViewArgs view_args;
 
   auto* run = app.add_subcommand("run", "run a scene and write summary.json and timeseries.csv");
   add_scene_options(run, run_args, true);
@@ -63,6 +68,8 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "measure speed (default scene: packing)");
   add_scene_options(bench, bench_args, false);
   bench->add_option("--out", bench_args.out, "folder for bench.json (default out/bench)");
+  std::string bench_peer;  // bench --peer liggghts (app/bench_peer.hpp)
+  bench->add_option("--peer", bench_peer, "also run the same work in another code: liggghts");
 
   auto* sweep = app.add_subcommand("sweep", "the paper's velocity sweep (Fig. 6) and U_mf");
   sweep->add_option("scene", sweep_args.scene, "scene file (TOML)")->required();
@@ -86,13 +93,30 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
 
-  auto* exporter = app.add_subcommand("export", "write the scene for another code (LIGGGHTS)");
+  // The viewer: a window with a control panel (README.md, "Viewer"); headless frames without one.
+  auto* view = app.add_subcommand("view", "watch a scene live with a control panel (default scene: teaching)");
+  add_scene_options(view, view_args.run_like, false);
+  add_output_options(view, view_args.output);
+  view->add_option("--script", view_args.script, "drive the viewer from a file (README.md, \"Viewer\")");
+  view->add_option("--out", view_args.out, "folder for screenshots, recordings, headless frames (out/view)");
+
+  auto* exporter = app.add_subcommand("export", "write the scene for another code (LIGGGHTS, OpenFOAM)");
   exporter->add_option("scene", export_args.scene, "scene file (TOML)")->required();
   exporter->add_option("--set", export_args.overrides, "override a scene value: section.key=value")
       ->take_all()
       ->allow_extra_args(false);
-  exporter->add_option("--to", export_args.to, "target: liggghts")->required();
+  exporter->add_option("--to", export_args.to, "target: liggghts, openfoam")->required();
   exporter->add_option("dir", export_args.dir, "folder to write")->required();
+
+  auto* study = app.add_subcommand("study", "speed against accuracy, stability, model choices");
+  study->add_option("name", study_args.name, "the study (see --list)");
+  study->add_flag("--list", study_args.list, "name the studies and how long each takes");
+  study->add_option("--out", study_args.out, "output folder (default out/study-NAME)");
+  study->add_option("--size", study_args.size, "full (default) or tiny (seconds, a small bed)")
+      ->check(CLI::IsMember({"full", "tiny"}));
+  study->add_flag("--quick", study_args.quick, "the same as --size tiny");
+  study->add_option("--jobs", study_args.jobs, "points at once (default: one per core)")
+      ->check(CLI::NonNegativeNumber);
 
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
@@ -119,10 +143,14 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) return fluidbed::app::run_command(run_args);
-    if (*bench) return fluidbed::app::bench_command(bench_args);
+    if (*bench)
+      return bench_peer.empty() ? fluidbed::app::bench_command(bench_args)
+                                : fluidbed::app::bench_peer_command(bench_args, bench_peer);
     if (*sweep) return fluidbed::app::sweep_command(sweep_args);
     if (*reproduce) return fluidbed::app::reproduce_command(reproduce_args);
     if (*exporter) return fluidbed::app::export_command(export_args);
+    if (*study) return fluidbed::app::study_command(study_args);
+    if (*view) return fluidbed::app::view_command(view_args);
   } catch (const fluidbed::InputError& e) {
     std::cerr << "fluidbed: error: " << e.what() << "\n";
     return 2;

@@ -16,6 +16,7 @@
 #include "scene/scene_loader.hpp"
 #include "sim/run.hpp"
 #include "sim/simulation.hpp"
+#include "studies/study.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -102,7 +103,19 @@ int reproduce_command(const ReproduceArgs& a) {
   const SweepResult sr = run_sweep(sweep_scene, so);
   write_sweep_outputs(sr, so, sweep_scene.scene.name);
 
-  // 4. The report.
+  // 4. The studies (speed against accuracy, stability, model choices): tiny with --quick. They
+  // use their own scenes; the --set overrides above do not apply to them.
+  std::vector<study::Report> studies;
+  for (const study::Info& info : study::all_studies()) {
+    log("== study " + std::string(info.name));
+    study::Options so_study;
+    so_study.out = (fs::path(out) / "studies" / info.name).string();
+    so_study.size = a.quick ? study::Size::Tiny : study::Size::Full;
+    so_study.log = log;
+    studies.push_back(study::run_study(info, so_study));
+  }
+
+  // 5. The report.
   const auto& pj = pr.result.summary;
   const auto& ij = ir.result.summary;
   const double weight = num(pj, "bed_weight_per_area_pa");
@@ -150,6 +163,17 @@ int reproduce_command(const ReproduceArgs& a) {
   md << "Fig. 15, max overlap ratio: ![overlap](paper_bed/overlap.png)\n\n";
   md << "Figs 12-13, particles from the jet region: ![trajectory](paper_bed/trajectory.png)\n\n";
   md << "Fig. 17, the ideal case's dp: ![ideal](ideal/dp.png)\n\n";
+  md << "## Studies: speed against accuracy, stability, model choices\n\n";
+  md << "Each study below is `fluidbed study NAME" << (a.quick ? " --size tiny" : "")
+     << "`; its table is `studies/NAME/study.csv`, its full findings `studies/NAME/summary.md`. "
+     << "The advice is derived from the study's own measurements by the rule it states.\n\n";
+  for (const auto& st : studies) {
+    md << "### " << st.title << "\n\n";
+    for (const auto& c : st.charts)
+      md << "![" << st.name << "](studies/" << st.name << "/" << c << ")\n\n";
+    md << st.advice << " (" << st.points << " points, " << st.failed << " failed runs recorded; "
+       << fmt("%.0f s", st.wall_time) << "; [findings](studies/" << st.name << "/summary.md))\n\n";
+  }
   md << "## Settings\n\n";
   md << "- paper bed: `assets/scenes/xu_yu_1997.toml`, " << paper_time << " s simulated, "
      << "averaging from " << averaging << " s; ideal: `assets/scenes/ideal.toml`, " << ideal_time

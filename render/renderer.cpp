@@ -371,14 +371,20 @@ struct Renderer::Impl {
     if (top) rect(over, {in.x0, in.y0 - t, in.x1, in.y0}, th.wall);
     const float bottom0 = in.y1, bottom1 = in.y1 + t;
     if (s.inlet_kind == "jet" && s.jet_width > 0.0) {
-      // The slot: a gap in the bottom wall, centred, with the jet's arrow coming up into it.
-      const float a = bed.px(0.5 * (s.width - s.jet_width)), b = bed.px(0.5 * (s.width + s.jet_width));
-      rect(over, {in.x0 - t, bottom0, a, bottom1}, th.wall);
-      rect(over, {b, bottom0, in.x1 + t, bottom1}, th.wall);
-      const float len = 1.1f * l.font;
-      const float half = std::max(1.0f, 0.5f * (b - a) - 0.5f);
-      add_arrow(arrow_list, 0.5f * (a + b), bottom1 + len, 0.0f, -len, std::max(0.6f, 0.45f * half),
-                {th.jet.r, th.jet.g, th.jet.b});
+      // The slots: gaps in the bottom wall, each with its jet's arrow coming up into it.
+      const int jets = std::max(1, s.jets);
+      float wall_from = in.x0 - t;
+      for (int k = 0; k < jets; ++k) {
+        const double centre = (k + 0.5) * s.width / jets;
+        const float a = bed.px(centre - 0.5 * s.jet_width), b = bed.px(centre + 0.5 * s.jet_width);
+        rect(over, {wall_from, bottom0, a, bottom1}, th.wall);
+        wall_from = b;
+        const float len = 1.1f * l.font;
+        const float half = std::max(1.0f, 0.5f * (b - a) - 0.5f);
+        add_arrow(arrow_list, 0.5f * (a + b), bottom1 + len, 0.0f, -len,
+                  std::max(0.6f, 0.45f * half), {th.jet.r, th.jet.g, th.jet.b});
+      }
+      rect(over, {wall_from, bottom0, in.x1 + t, bottom1}, th.wall);
     } else if (s.inlet_kind == "uniform") {
       // A distributor: the bottom wall dashed.
       const float dash = std::max(3.0f, 0.6f * l.font);
@@ -638,6 +644,18 @@ void Renderer::blit_to_default(int width, int height) {
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   gl.BlitFramebuffer(0, 0, impl_->fb_width, impl_->fb_height, 0, 0, width, height,
                      GL_COLOR_BUFFER_BIT, GL_LINEAR);
+}
+
+void Renderer::blit_region_to_default(const Rect& src, const Rect& dst, int window_height) {
+  const auto& gl = impl_->gl;
+  const auto fh = static_cast<float>(impl_->fb_height);
+  const auto wh = static_cast<float>(window_height);
+  const auto i = [](float v) { return static_cast<GLint>(std::lround(v)); };
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, impl_->resolve_fbo.id());
+  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  // GL's rows count from the bottom.
+  gl.BlitFramebuffer(i(src.x0), i(fh - src.y1), i(src.x1), i(fh - src.y0), i(dst.x0), i(wh - dst.y1),
+                     i(dst.x1), i(wh - dst.y0), GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
 Image Renderer::read_image() { return impl_->read(); }

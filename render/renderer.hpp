@@ -37,6 +37,9 @@ class Renderer {
                        const RenderSettings& settings, int height);
   // Copies the last drawn picture to the default framebuffer (a window), scaled to fit.
   void blit_to_default(int width, int height);
+  // Copies the part `src` of the last drawn picture (its pixels, y down) onto `dst` of the default
+  // framebuffer (window pixels, y down, a window `window_height` tall): the viewer's zoom and pan.
+  void blit_region_to_default(const Rect& src, const Rect& dst, int window_height);
   // The last drawn picture.
   Image read_image();
 

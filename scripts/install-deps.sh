@@ -14,11 +14,13 @@ PACKAGES=(
   libosmesa6-dev        # offscreen GL (llvmpipe): frames and render tests without a display
   zlib1g-dev            # PNG frames
   libglfw3-dev          # windows (the viewer)
+  libimgui-dev          # the viewer's panel (Dear ImGui; its GLFW and OpenGL 3 backends as sources)
   python3-glad          # generates the GL loader at build time
   ffmpeg                # DIR/video.mp4; ffprobe in the render tests
   xvfb xauth            # a virtual display: the window backend's test (xvfb-run)
   python3-vtk9          # reads the VTK files back in the render tests (ParaView's readers)
   liggghts              # the peer DEM code: `fluidbed export --to liggghts` decks are run in tests
+  openfoam              # DPMFoam: `fluidbed export --to openfoam` cases are run in tests (installs in ~10 s)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

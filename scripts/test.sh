@@ -8,3 +8,9 @@ ctest --test-dir build --output-on-failure -j "$(nproc)"
 BUILD_DIR=build-sanitize BUILD_TYPE=RelWithDebInfo scripts/build.sh -DFLUIDBED_SANITIZE=ON -DFLUIDBED_BENCHMARKS=OFF
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" -LE long
+# The engine/viewer pair under the thread sanitizer: only the engine and one small test binary
+# (the engine thread, the snapshot hand-off, the command queue), in a folder of their own.
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFLUIDBED_SANITIZE_THREAD=ON \
+  -DFLUIDBED_BENCHMARKS=OFF > /dev/null
+ninja -C build-tsan -j "$(nproc)" fluidbed_view_engine_tests
+TSAN_OPTIONS="halt_on_error=1" build-tsan/tests/fluidbed_view_engine_tests

@@ -17,10 +17,13 @@ TEST(ReproduceCli, WritesEveryFigureAndTheReport) {
   ASSERT_EQ(r.status, 0) << r.err << r.out;
   for (const char* f : {"report.md", "sweep/sweep.png", "sweep/sweep.csv", "sweep/summary.json",
                         "paper_bed/dp.png", "paper_bed/overlap.png", "paper_bed/trajectory.png",
-                        "paper_bed/summary.json", "ideal/dp.png", "ideal/summary.json"})
+                        "paper_bed/summary.json", "ideal/dp.png", "ideal/summary.json",
+                        "studies/integrators/stability.png", "studies/coupling/pareto.png",
+                        "studies/failures/study.csv"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   const std::string report = read_file(dir / "report.md");
   for (const char* row : {"U_mf", "mean dp at 2.8 m/s", "start-up peak", "max overlap ratio at start-up",
-                          "ideal case", "cost of 1 s", "wall time of this report", "particles.count=300"})
+                          "ideal case", "cost of 1 s", "wall time of this report", "particles.count=300",
+                          "## Studies", "Integrators and time step"})
     EXPECT_NE(report.find(row), std::string::npos) << row;
 }

@@ -1,0 +1,172 @@
+#pragma once
+// Studies: speed against accuracy, stability limits and model choices, measured by the program
+// itself (`fluidbed study NAME --out DIR`). Each study runs its independent points side by side
+// (one std::thread per core over a queue, each simulation on one thread), records every point in
+// DIR/study.csv (a failed run is a row with its reason, never a crash), draws its charts as PNG
+// and writes DIR/summary.md: what was measured, the key figures, and what a user should choose.
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "chart.hpp"
+#include "scene/settings.hpp"
+#include "sim/run.hpp"
+
+namespace fluidbed::app::study {
+
+enum class Size { Tiny, Full };
+
+struct Options {
+  std::string out;  // folder for study.csv, the charts and summary.md (created)
+  Size size = Size::Full;
+  int workers = 0;  // points at once; 0: one per core
+  std::function<void(const std::string&)> log;  // progress lines (may be empty)
+};
+
+// What a study hands back; also written as DIR/summary.md (and used by `reproduce`).
+struct Report {
+  std::string name, title;
+  std::vector<std::string> charts;  // PNG files inside the study's folder
+  std::string findings;             // markdown: what was measured and the key figures
+  std::string advice;               // one paragraph: what to choose and why (from the data)
+  int points = 0, failed = 0;
+  double wall_time = 0.0;  // s
+};
+
+struct Info {
+  const char* name;
+  const char* title;
+  const char* full_duration;  // how long the full size takes on two cores
+  const char* tiny_duration;
+  Report (*run)(const Options&);
+};
+
+// Every study, in the order.
+const std::vector<Info>& all_studies();
+// nullptr when no study has that name.
+const Info* find_study(const std::string& name);
+// Runs a study (creating its folder, timing it, writing summary.md); throws InputError for bad
+// options.
+Report run_study(const Info& info, const Options& o);
+
+// ---- shared by the studies ----------------------------------------------------------------
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The paper's sphere: 4 mm glass, 9.048e-5 kg.
+double paper_particle_mass();
+// The contact duration used by every study: pi sqrt(m / kappa), a sphere against a wall (the
+// figure model.md derives: 1.34e-4 s at kappa = 50,000 N/m; the paper's step is about 1/9 of it).
+// A pair of equal spheres (reduced mass m/2) lasts 1/sqrt(2) as long.
+double contact_duration(double stiffness, double mass);
+
+int resolve_workers(int requested);
+
+// CPU seconds used by the calling thread so far. A point's cost is measured with it: each point
+// runs on one thread, so this is its compute time whatever else shares the cores (on an idle core
+// it equals the wall time; with other programs running, wall time measures the scheduler).
+double thread_cpu_seconds();
+
+// f(k) for k in [0, n) on `workers` threads taking indices from a shared counter, heaviest
+// first when `order` is given (a permutation of [0, n)); results in index order.
+template <class R>
+std::vector<R> run_parallel(std::size_t n, int workers, const std::function<R(std::size_t)>& f,
+                            const std::vector<std::size_t>& order = {}) {
+  std::vector<R> out(n);
+  std::atomic<std::size_t> next{0};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  auto worker = [&] {
+    for (std::size_t q; (q = next.fetch_add(1)) < n;) {
+      const std::size_t k = order.empty() ? q : order[q];
+      try {
+        out[k] = f(k);
+      } catch (...) {
+        std::lock_guard lock(error_mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  const auto threads = static_cast<std::size_t>(std::max(1, workers));
+  if (threads == 1 || n <= 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < std::min(threads, n); ++t) pool.emplace_back(worker);
+    for (auto& t : pool) t.join();
+  }
+  if (error) std::rethrow_exception(error);
+  return out;
+}
+
+// A run that may fail: the failure's words and its kind instead of an exception.
+struct PointRun {
+  bool ok = false;
+  std::string error;  // one line
+  std::string kind;   // failure_kind(error)
+  RunResult result;   // when ok
+  double wall = 0.0;  // s, the whole point
+  double cpu = 0.0;   // s, thread CPU time of run_simulation (the cost)
+};
+// Runs `s` to `until` (s) with the given options; SimulationFailure becomes a failed point.
+PointRun run_point(const Settings& s, double until, RunOptions options = {});
+
+// What a failure message says, as one word: "nan", "overlap", "left_bed", "cfl", "porosity",
+// "simple", "energy" or "other".
+std::string failure_kind(const std::string& message);
+
+// The paper's bed (xu_yu_1997.toml); Tiny: 300 particles in a bed 0.06 m wide and 0.3 m high with
+// 6 x 15 gas cells of the paper's size and a 0.3 s packing.
+Settings bed_scene(Size size, const std::vector<std::string>& overrides = {});
+
+// The bed of `fixed` (particles.frozen, a uniform inlet) at inflow U after `time` s of gas: the
+// fluid force on the particles over their weight, and dp (Pa).
+double fixed_bed_force_ratio(const Settings& fixed, double U, double time, double& dp);
+// The model's minimum fluidization velocity: where that ratio reaches 1, by secant steps from the
+// bracket [lo, hi] (m/s) to 2 mm/s. dp_lo: dp at lo.
+double fixed_bed_umf(const Settings& fixed, double lo, double hi, double time, double& dp_lo);
+
+// The table behind study.csv: named columns, rows of text.
+class Table {
+ public:
+  explicit Table(std::vector<std::string> columns) : columns_(std::move(columns)) {}
+  void add(const std::vector<std::string>& row);  // throws std::logic_error on a wrong length
+  std::string csv() const;
+  const std::vector<std::string>& columns() const { return columns_; }
+  std::size_t rows() const { return rows_.size(); }
+
+ private:
+  std::vector<std::string> columns_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+// %.6g, and empty for NaN (a value that does not exist for a failed point).
+std::string num(double v);
+// printf into a string.
+std::string fmt(const char* format, double v);
+std::string csv_text(std::string s);  // quoted when it holds a comma or a quote
+
+void write_text(const std::string& path, const std::string& text);
+// Draws one chart (or a grid of them) as PNG; returns the file name for the report.
+std::string write_chart(const std::string& dir, const std::string& file, const chart::Chart& c,
+                        int width = 1200, int height = 750);
+std::string write_grid(const std::string& dir, const std::string& file,
+                       const std::vector<chart::Chart>& charts, int columns, int panel_w,
+                       int panel_h, const std::string& title);
+
+// The studies.
+Report integrators_study(const Options& o);
+Report contact_study(const Options& o);
+Report stiffness_study(const Options& o);
+Report coupling_study(const Options& o);
+Report modules_study(const Options& o);
+Report model_form_study(const Options& o);
+Report failures_study(const Options& o);
+
+}  // namespace fluidbed::app::study

@@ -1,0 +1,18 @@
+#pragma once
+// fluidbed study NAME [--out DIR] [--size tiny|full] [--jobs N] | fluidbed study --list
+#include <string>
+
+namespace fluidbed::app {
+
+struct StudyArgs {
+  std::string name;
+  std::string out;            // default out/study-NAME
+  std::string size = "full";  // full | tiny
+  bool quick = false;         // the same as --size tiny
+  bool list = false;
+  int jobs = 0;               // points at once; 0: one per core
+};
+
+int study_command(const StudyArgs& a);
+
+}  // namespace fluidbed::app

@@ -1,0 +1,59 @@
+#pragma once
+// `fluidbed view SCENE --script FILE`: the viewer driven by a file, for tests and for demo videos
+// made without hands. One command a line; `#` starts a comment. A line may begin with `at T`: the
+// engine first runs to the step nearest simulated time T (s) and stops there, so the command acts
+// at an exact moment. Lines run in order; when the last has run the viewer goes on as usual
+// (running, unless the script paused it), or closes at `quit`.
+//
+//   at 0.05 velocity 1.8       superficial gas velocity (m/s) from the next gas step
+//   ideal on|off               contact damping 0 and friction 0 (the paper's ideal case)
+//   run | pause | step [N]     the run switch; N single steps (simulated time moves N dt)
+//   reset                      back to the packed bed (the state at the start, exactly)
+//   wait S                     let the bed run for S wall seconds (if running), then stop
+//   colour MODE                speed, force, torque, overlap, mixing
+//   gas-arrows on|off   particle-arrows on|off   porosity on|off
+//   track ID | track off       follow a particle and draw its path
+//   zoom F                     zoom factor (1: the whole frame)
+//   screenshot FILE.png        the window as shown (panel and bed)
+//   record FILE.mp4|DIR        start recording the window (MP4, or PNG frames in DIR)
+//   record stop
+//   quit                       close the viewer, exit status 0
+#include <string>
+#include <vector>
+
+namespace fluidbed::app {
+
+struct ScriptLine {
+  enum class Kind {
+    velocity,
+    ideal,
+    run,
+    pause,
+    step,
+    reset,
+    wait,
+    colour,
+    gas_arrows,
+    particle_arrows,
+    porosity,
+    track,
+    zoom,
+    screenshot,
+    record,
+    record_stop,
+    quit,
+  };
+  double at = -1.0;  // s of simulated time; < 0: right after the previous line
+  Kind kind = Kind::quit;
+  double number =
+      0.0;           // velocity (m/s), step count, wait (s), track id (-1: off), zoom, on/off (1/0)
+  std::string text;  // colour mode, file
+  int line = 0;      // in the file, for messages
+};
+
+// Parses script text; InputError "ORIGIN line N: ..." naming the problem.
+std::vector<ScriptLine> parse_view_script(const std::string& text, const std::string& origin);
+// Reads and parses FILE; InputError when it cannot be read.
+std::vector<ScriptLine> load_view_script(const std::string& path);
+
+}  // namespace fluidbed::app

@@ -1,0 +1,266 @@
+// The viewer: picking geometry (no GL), `fluidbed view` in scripted mode in a window (under
+// xvfb-run: ctest's ViewWindowUnderXvfb), its headless fallback, and its bad-input errors.
+#include <gtest/gtest.h>
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <sys/wait.h>
+#include "../view/view_scene.hpp"
+#include "picking.hpp"
+#include "render_support.hpp"
+
+namespace fluidbed::testing {
+namespace {
+
+using render::ViewTransform;
+
+// ---------------------------------------------------------------------------------------------
+// Geometry.
+
+TEST(ViewPicking, ZoomAboutAPointKeepsItUnderTheMouse) {
+  ViewTransform t;
+  const render::Rect area{100, 0, 900, 600};
+  const int fw = 1600, fh = 1200;
+  double fx0 = 0, fy0 = 0;
+  render::window_to_frame(t, area, fw, fh, 300.0, 450.0, fx0, fy0);
+  EXPECT_NEAR(fx0, 400.0, 1e-9);  // (300 - 100) / 800 of 1600
+  EXPECT_NEAR(fy0, 900.0, 1e-9);
+  t.zoom_about(2.0, (300.0 - 100.0) / 800.0, 450.0 / 600.0);
+  EXPECT_DOUBLE_EQ(t.zoom, 2.0);
+  double fx1 = 0, fy1 = 0, wx = 0, wy = 0;
+  render::window_to_frame(t, area, fw, fh, 300.0, 450.0, fx1, fy1);
+  EXPECT_NEAR(fx1, fx0, 1e-9);
+  EXPECT_NEAR(fy1, fy0, 1e-9);
+  render::frame_to_window(t, area, fw, fh, fx1, fy1, wx, wy);
+  EXPECT_NEAR(wx, 300.0, 1e-9);
+  EXPECT_NEAR(wy, 450.0, 1e-9);
+  // The view never leaves the frame.
+  t.pan_by(10.0, -10.0);
+  const render::Rect v = render::visible_rect(t, fw, fh);
+  EXPECT_NEAR(v.x0, 0.0, 1e-3);
+  EXPECT_NEAR(v.y1, 1200.0, 1e-3);
+  EXPECT_NEAR(v.width(), 800.0, 1e-3);
+  t.zoom_about(0.01, 0.5, 0.5);
+  EXPECT_DOUBLE_EQ(t.zoom, 1.0);
+}
+
+TEST(ViewPicking, FindsTheParticleDrawnUnderAPixel) {
+  Snapshot s = empty_box(0.1, 0.2);
+  add_particle(s, {0.02, 0.03, 0.002});
+  add_particle(s, {0.0238, 0.03, 0.002});  // overlapping the first a little
+  add_particle(s, {0.07, 0.15, 0.002});
+  const render::FrameLayout l = render::frame_layout(s, 800, 600, 0.4);
+  ASSERT_EQ(l.beds.size(), 2u);
+  double fx = 0, fy = 0;
+  render::world_to_frame(l, 0.07, 0.15, fx, fy);
+  EXPECT_EQ(render::pick_particle(s, l, fx, fy), std::optional<std::size_t>(2));
+  render::world_to_frame(l, 0.0205, 0.0302, fx, fy);
+  EXPECT_EQ(render::pick_particle(s, l, fx, fy), std::optional<std::size_t>(0));  // nearer centre
+  render::world_to_frame(l, 0.05, 0.1, fx, fy);
+  EXPECT_FALSE(render::pick_particle(s, l, fx, fy).has_value());
+  // The close-up panel (the lower 40 % magnified) picks the same particle.
+  const render::BedView& z = l.beds[1];
+  EXPECT_EQ(render::pick_particle(s, l, z.px(0.0238), z.py(0.03)), std::optional<std::size_t>(1));
+  double x = 0, y = 0;
+  ASSERT_TRUE(render::frame_to_world(l, z.px(0.0238), z.py(0.03), x, y));
+  EXPECT_NEAR(x, 0.0238, 1e-5);
+  EXPECT_NEAR(y, 0.03, 1e-5);
+}
+
+TEST(ViewPicking, ContactsAreOverlapsAndWalls) {
+  Snapshot s = empty_box(0.1, 0.2);
+  add_particle(s, {0.0019, 0.0019, 0.002});  // touches the left and bottom walls
+  add_particle(s, {0.0057, 0.0019, 0.002});  // 3.8 mm away: overlaps the first
+  add_particle(s, {0.0098, 0.0019, 0.002});  // 4.1 mm from the second: no contact
+  const render::ParticleContacts c = render::contacts_of(s, 0);
+  EXPECT_EQ(c.walls, 2);
+  ASSERT_EQ(c.particles.size(), 1u);
+  EXPECT_EQ(c.particles[0], 1u);
+  EXPECT_NEAR(c.max_overlap, 1.0 - 0.0038 / 0.004, 1e-9);
+  EXPECT_EQ(render::contacts_of(s, 2).count(), 1u);  // only the bottom wall
+}
+
+// ---------------------------------------------------------------------------------------------
+// The program.
+
+struct ViewRun {
+  int status;
+  std::string output;
+};
+
+// Runs `fluidbed view ARGS` with its output in DIR/log.txt (each test has its own folder: ctest
+// runs them side by side).
+ViewRun run_view(const std::filesystem::path& dir, const std::string& args,
+                 const std::string& env = "") {
+  const std::string log = (dir / "log.txt").string();
+  const std::string cmd =
+      env + " " + std::string(FLUIDBED_BINARY) + " view " + args + " > " + log + " 2>&1";
+  const int raw = std::system(cmd.c_str());
+  std::ifstream in(log);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text};
+}
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / ("fluidbed_view_" + name);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+std::string write_file(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+struct Png {
+  int w = 0, h = 0;
+  std::vector<unsigned char> rgb;
+  const unsigned char* at(int x, int y) const {
+    return rgb.data() + 3 * (static_cast<std::size_t>(y) * w + x);
+  }
+};
+
+Png read_png(const std::string& path) {
+  Png p;
+  int n = 0;
+  unsigned char* data = stbi_load(path.c_str(), &p.w, &p.h, &n, 3);
+  if (data) {
+    p.rgb.assign(data, data + static_cast<std::size_t>(p.w) * p.h * 3);
+    stbi_image_free(data);
+  }
+  return p;
+}
+
+// Pixels of [x0, x1) x [y0, y1) for which `pred(r, g, b)` holds.
+template <class P>
+int count_pixels(const Png& p, int x0, int x1, int y0, int y1, P pred) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const unsigned char* c = p.at(x, y);
+      n += pred(c[0], c[1], c[2]) ? 1 : 0;
+    }
+  return n;
+}
+
+TEST(ViewWindow, ScriptedRunChangesTheGasAndTakesAScreenshot) {
+  if (!std::getenv("DISPLAY")) {
+    if (std::getenv("FLUIDBED_REQUIRE_DISPLAY")) FAIL() << "DISPLAY is not set";
+    GTEST_SKIP() << "no display (ctest runs this test under xvfb-run)";
+  }
+  const auto dir = fresh_dir("window");
+  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string shot0 = (dir / "start.png").string(), shot1 = (dir / "later.png").string();
+  const std::string script = write_file(dir / "demo.txt", "screenshot " + shot0 +
+                                                              "\n"
+                                                              "at 0.01 velocity 3.5\n"
+                                                              "colour mixing\n"
+                                                              "track 40\n"
+                                                              "at 0.02 screenshot " +
+                                                              shot1 +
+                                                              "\n"
+                                                              "quit\n");
+  const ViewRun r = run_view(
+      dir, scene + " --script " + script + " --frame-size 960x600 --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("wrote " + shot1), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("frames/s"), std::string::npos) << r.output;
+  const Png a = read_png(shot0), b = read_png(shot1);
+  ASSERT_EQ(a.w, 960);
+  ASSERT_EQ(a.h, 600);
+  ASSERT_EQ(b.w, 960);
+  // The panel: ImGui's dark window over the left 380 px (dark grey, light text on it).
+  const auto dark = [](int r_, int g, int b_) { return r_ < 60 && g < 60 && b_ < 60; };
+  const auto light = [](int r_, int g, int b_) { return r_ > 180 && g > 180 && b_ > 180; };
+  EXPECT_GT(count_pixels(b, 0, 370, 0, 600, dark), 370 * 600 / 2);
+  EXPECT_GT(count_pixels(b, 0, 370, 0, 120, light), 300);  // text: the title, buttons, time
+  // The buttons are ImGui's blue.
+  EXPECT_GT(count_pixels(b, 0, 370, 0, 80,
+                         [](int r_, int g, int b_) { return b_ > r_ + 40 && b_ > 90 && g > 50; }),
+            500);
+  // The bed right of the panel: particles coloured by the mixing bands (viridis: purple to
+  // yellow; green-yellow ones are the upper bands), on the light page.
+  const auto viridis_yellow = [](int r_, int g, int b_) { return r_ > 150 && g > 170 && b_ < 110; };
+  const auto viridis_purple = [](int r_, int g, int b_) {
+    return r_ > 50 && r_ < 90 && b_ > 70 && g < 40;
+  };
+  EXPECT_GT(count_pixels(b, 380, 960, 0, 600, viridis_yellow), 200);
+  EXPECT_GT(count_pixels(b, 380, 960, 0, 600, viridis_purple), 200);
+  // At the start the colour was speed: the bed at rest is all the low end (no yellow particles
+  // in the bed; the colour bars still hold some).
+  EXPECT_GT(count_pixels(a, 380, 960, 0, 600, light), 960 * 600 / 4);
+  // The velocity shows in the panel's slider and the frame's label: the two pictures differ.
+  int differ = 0;
+  for (std::size_t k = 0; k < a.rgb.size(); ++k) differ += a.rgb[k] != b.rgb[k] ? 1 : 0;
+  EXPECT_GT(differ, 1000);
+  // The tracked particle's red ring.
+  EXPECT_GT(count_pixels(b, 380, 960, 0, 600,
+                         [](int r_, int g, int b_) { return r_ > 190 && g < 70 && b_ < 70; }),
+            20);
+}
+
+TEST(ViewWindow, RecordsAnMp4) {
+  if (!std::getenv("DISPLAY")) {
+    if (std::getenv("FLUIDBED_REQUIRE_DISPLAY")) FAIL() << "DISPLAY is not set";
+    GTEST_SKIP() << "no display (ctest runs this test under xvfb-run)";
+  }
+  const auto dir = fresh_dir("record");
+  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string video = (dir / "demo.mp4").string();
+  const std::string script =
+      write_file(dir / "rec.txt", "record " + video + "\nwait 1.0\nrecord stop\nquit\n");
+  const ViewRun r = run_view(
+      dir, scene + " --script " + script + " --frame-size 640x400 --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_TRUE(std::filesystem::exists(video)) << r.output;
+  EXPECT_GT(std::filesystem::file_size(video), 1000u);
+}
+
+TEST(ViewCommand, WithoutADisplayWritesHeadlessFrames) {
+  const auto dir = fresh_dir("headless");
+  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string shot = (dir / "shot.png").string();
+  const std::string script = write_file(
+      dir / "s.txt", "at 0.01 velocity 3\nat 0.02 screenshot " + shot + "\nat 0.04 quit\n");
+  const ViewRun r = run_view(
+      dir, scene + " --script " + script + " --frame-size 320x240 --out " + (dir / "out").string(),
+      "env -u DISPLAY -u WAYLAND_DISPLAY");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.rfind("fluidbed view: no display", 0), 0u)
+      << r.output;  // the first line says so
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/frames/frame_000000.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/frames/frame_000001.png"));  // t = 0.04 s
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/frames/frame_000002.png"));
+  const Png p = read_png(shot);
+  EXPECT_EQ(p.w, 320);
+}
+
+TEST(ViewCommand, BadInputIsOneLineAndStatusTwo) {
+  const auto dir = fresh_dir("bad");
+  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string bad_script = write_file(dir / "bad.txt", "velocity 2\nfly away\n");
+  ViewRun r = run_view(dir, scene + " --script " + bad_script);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("line 2: unknown command 'fly'"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  r = run_view(dir, scene + " --script " + (dir / "missing.txt").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("missing.txt"), std::string::npos) << r.output;
+  r = run_view(dir, scene + " --set particles.colour=red");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("colour"), std::string::npos) << r.output;
+  // No scene given and no teaching scene where the assets are: the usual one-line error.
+  r = run_view(dir, "", "FLUIDBED_ASSETS=" + dir.string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("teaching.toml"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+}  // namespace
+}  // namespace fluidbed::testing

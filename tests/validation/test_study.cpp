@@ -1,0 +1,242 @@
+// `fluidbed study NAME --size tiny`: every study end to end on a small problem (seconds each):
+// the CSV's columns, the charts and summary, and the facts the studies must show.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "../test_support.hpp"
+
+using namespace fluidbed::testing;
+
+namespace {
+
+struct Csv {
+  std::vector<std::string> columns;
+  std::vector<std::map<std::string, std::string>> rows;
+  double num(std::size_t r, const std::string& c) const {
+    const std::string& v = rows.at(r).at(c);
+    return v.empty() ? NAN : std::stod(v);
+  }
+};
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false;
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const char c = line[k];
+    if (quoted) {
+      if (c == '"' && k + 1 < line.size() && line[k + 1] == '"') {
+        cur += '"';
+        ++k;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        cur += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+Csv read_csv(const std::filesystem::path& p) {
+  Csv csv;
+  std::istringstream in(read_file(p));
+  std::string line;
+  std::getline(in, line);
+  csv.columns = split_csv_line(line);
+  while (std::getline(in, line)) {
+    const auto v = split_csv_line(line);
+    EXPECT_EQ(v.size(), csv.columns.size()) << line;
+    std::map<std::string, std::string> row;
+    for (std::size_t k = 0; k < v.size() && k < csv.columns.size(); ++k) row[csv.columns[k]] = v[k];
+    csv.rows.push_back(row);
+  }
+  return csv;
+}
+
+// Runs a tiny study; checks the files every study writes; returns its table.
+Csv tiny_study(const std::string& name, const std::vector<std::string>& charts,
+               const std::vector<std::string>& columns, std::filesystem::path* dir_out = nullptr) {
+  const auto dir = temp_dir("study-" + name);
+  const CommandResult r = run_fluidbed("study " + name + " --size tiny --out " + dir.string(),
+                                       "study-" + name);
+  EXPECT_EQ(r.status, 0) << r.err << r.out;
+  for (const auto& f : charts) EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  const std::string summary = read_file(dir / "summary.md");
+  EXPECT_NE(summary.find("## What to choose"), std::string::npos);
+  const Csv csv = read_csv(dir / "study.csv");
+  for (const auto& c : columns)
+    EXPECT_NE(std::find(csv.columns.begin(), csv.columns.end(), c), csv.columns.end()) << c;
+  for (const char* c : {"status", "failure_kind", "failure"})
+    EXPECT_NE(std::find(csv.columns.begin(), csv.columns.end(), c), csv.columns.end()) << c;
+  EXPECT_FALSE(csv.rows.empty());
+  if (dir_out) *dir_out = dir;
+  return csv;
+}
+
+// Rows of one variant, in file order.
+std::vector<std::size_t> rows_of(const Csv& c, const std::string& col, const std::string& value) {
+  std::vector<std::size_t> out;
+  for (std::size_t r = 0; r < c.rows.size(); ++r)
+    if (c.rows[r].at(col) == value) out.push_back(r);
+  return out;
+}
+
+double largest_stable(const Csv& c, const std::string& integrator) {
+  double best = NAN;
+  for (std::size_t r : rows_of(c, "integrator", integrator)) {
+    if (c.rows[r].at("stable") != "yes") break;
+    best = c.num(r, "dt_over_tc9");
+  }
+  return best;
+}
+
+const std::vector<std::string> kAccuracyColumns = {
+    "variant", "integrator", "displacement", "dt_s", "dt_over_tc9", "drop_error",
+    "restitution_error", "energy_drift_mgd", "stable", "cost_cpu_s_per_sim_s", "cost_wall_s_per_sim_s"};
+
+}  // namespace
+
+TEST(StudyCli, ListNamesEveryStudyWithItsDuration) {
+  const CommandResult r = run_fluidbed("study --list", "study-list");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* n : {"integrators", "contact", "stiffness", "coupling", "modules", "model-form",
+                        "failures"})
+    EXPECT_NE(r.out.find(n), std::string::npos) << n;
+  EXPECT_NE(r.out.find("min"), std::string::npos);  // how long the full size takes
+}
+
+TEST(StudyCli, BadInputIsOneLineAndStatusTwo) {
+  for (const char* args : {"study no-such-study", "study integrators --size huge",
+                           "study integrators --bogus", "study"}) {
+    const CommandResult r = run_fluidbed(args, "study-bad");
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+  const CommandResult r = run_fluidbed("study no-such-study", "study-bad-name");
+  EXPECT_NE(r.err.find("no-such-study"), std::string::npos) << r.err;
+}
+
+TEST(Study, IntegratorsTiny) {
+  std::filesystem::path dir;
+  const Csv c = tiny_study("integrators", {"accuracy.png", "stability.png", "speed_accuracy.png"},
+                           kAccuracyColumns, &dir);
+  // The predictor-corrector's drop-test error falls as the step shrinks: at 2x, 1x and the
+  // smallest step (0.25x). Neighbouring steps closer than a factor of 2 are not compared: the
+  // error after 10 bounces depends on where in a step each contact begins, and the mean over
+  // two phases does not remove that (the full study shows it).
+  std::map<double, double> err;
+  for (std::size_t r : rows_of(c, "integrator", "newmark"))
+    if (c.rows[r].at("stable") == "yes") err[c.num(r, "dt_over_tc9")] = c.num(r, "drop_error");
+  ASSERT_TRUE(err.count(2.0) && err.count(1.0) && err.count(0.25));
+  EXPECT_LT(err[0.25], err[1.0]);
+  EXPECT_LT(err[1.0], err[2.0]);
+  EXPECT_LT(err[0.25], 0.1 * err[2.0]);
+  // Symplectic Euler's largest stable step is smaller than the predictor-corrector's, or the
+  // data says otherwise and the summary explains why.
+  const double pc = largest_stable(c, "newmark"), se = largest_stable(c, "symplectic_euler");
+  ASSERT_FALSE(std::isnan(pc));
+  if (!(se < pc)) {
+    EXPECT_NE(read_file(dir / "summary.md").find("Note: not smaller"), std::string::npos);
+  }
+  // A step far beyond the contact duration (13.5 t_c / 9 = 1.5 t_c) fails, for every scheme.
+  for (std::size_t r = 0; r < c.rows.size(); ++r)
+    if (c.num(r, "dt_over_tc") > 1.0) {
+      EXPECT_EQ(c.rows[r].at("status"), "failed") << c.rows[r].at("variant");
+      EXPECT_EQ(c.rows[r].at("stable"), "no");
+      EXPECT_FALSE(c.rows[r].at("failure").empty());
+    }
+}
+
+TEST(Study, ContactTiny) {
+  const Csv c = tiny_study("contact", {"accuracy.png", "stability.png", "speed_accuracy.png"},
+                           kAccuracyColumns);
+  EXPECT_FALSE(rows_of(c, "displacement", "incremental").empty());
+  EXPECT_FALSE(rows_of(c, "displacement", "geometric").empty());
+  for (std::size_t r = 0; r < c.rows.size(); ++r)
+    if (c.num(r, "dt_over_tc") > 1.0) {
+      EXPECT_EQ(c.rows[r].at("status"), "failed");
+    }
+}
+
+TEST(Study, StiffnessTiny) {
+  const Csv c = tiny_study("stiffness", {"stiffness.png"},
+                           {"stiffness_n_m", "dt_s", "max_overlap_ratio", "dp_mean_pa",
+                            "cost_cpu_s_per_sim_s", "packing_bed_height_m"});
+  ASSERT_EQ(c.rows.size(), 2u);
+  EXPECT_EQ(c.num(0, "stiffness_n_m"), 50000.0);
+  EXPECT_EQ(c.num(1, "stiffness_n_m"), 800.0);
+  ASSERT_EQ(c.rows[0].at("status"), "ok") << c.rows[0].at("failure");
+  ASSERT_EQ(c.rows[1].at("status"), "ok") << c.rows[1].at("failure");
+  // Soft springs overlap more (the paper's argument) and take a longer step (sqrt(50000/800)).
+  EXPECT_GT(c.num(1, "max_overlap_ratio"), 3.0 * c.num(0, "max_overlap_ratio"));
+  EXPECT_NEAR(c.num(1, "dt_s") / c.num(0, "dt_s"), std::sqrt(50000.0 / 800.0), 1e-4);  // %.6g
+}
+
+TEST(Study, CouplingTiny) {
+  const Csv c = tiny_study("coupling", {"pareto.png"},
+                           {"setting", "particle_steps_per_gas_step", "cells_x", "cells_y",
+                            "tolerance", "dp_mean_pa", "dp_error", "umf_model_m_s", "umf_error",
+                            "cost_cpu_s_per_sim_s", "max_cfl"});
+  EXPECT_EQ(c.rows[0].at("status"), "ok") << c.rows[0].at("failure");  // the reference
+  // 50 particle steps per gas step make the gas step too long for the jet: a failed point,
+  // recorded with its reason.
+  bool found = false;
+  for (std::size_t r = 0; r < c.rows.size(); ++r)
+    if (c.rows[r].at("particle_steps_per_gas_step") == "50") {
+      found = true;
+      EXPECT_EQ(c.rows[r].at("status"), "failed");
+      EXPECT_EQ(c.rows[r].at("failure_kind"), "cfl") << c.rows[r].at("failure");
+    }
+  EXPECT_TRUE(found);
+}
+
+TEST(Study, ModulesTiny) {
+  const Csv c = tiny_study("modules", {"modules.png"},
+                           {"configuration", "us_per_step", "gas_us_per_step",
+                            "porosity_drag_us_per_step", "contacts_us_per_step"});
+  ASSERT_EQ(c.rows.size(), 6u);
+  // Scenes without gas do not pay for it; scenes with it do.
+  for (std::size_t r : {0u, 1u, 2u}) {
+    EXPECT_EQ(c.num(r, "gas_us_per_step"), 0.0) << c.rows[r].at("configuration");
+    EXPECT_EQ(c.num(r, "porosity_drag_us_per_step"), 0.0) << c.rows[r].at("configuration");
+  }
+  for (std::size_t r : {3u, 4u, 5u}) {
+    EXPECT_GT(c.num(r, "gas_us_per_step"), 0.0);
+  }
+  // The one-particle drop scene costs far less per step than a bed.
+  EXPECT_LT(c.num(0, "us_per_step"), 0.5 * c.num(1, "us_per_step"));
+}
+
+TEST(Study, ModelFormTiny) {
+  const Csv c = tiny_study("model-form", {"model_form.png"},
+                           {"model", "branch", "u_superficial", "dp_mean_pa", "dp_over_weight",
+                            "umf_fixed_bed_m_s", "umf_sweep_m_s"});
+  const auto a = rows_of(c, "model", "A"), p = rows_of(c, "model", "printed");
+  ASSERT_FALSE(a.empty());
+  ASSERT_FALSE(p.empty());
+  // Drag alone has to carry the whole weight: the fixed bed lifts later.
+  EXPECT_GT(c.num(p[0], "umf_fixed_bed_m_s"), c.num(a[0], "umf_fixed_bed_m_s"));
+}
+
+TEST(Study, FailuresTiny) {
+  const Csv c = tiny_study("failures", {"failures.png"},
+                           {"case", "expected_kind", "detected_kind", "detected_as_expected"});
+  EXPECT_GE(c.rows.size(), 6u);
+  for (const auto& row : c.rows) {
+    EXPECT_EQ(row.at("status"), "failed") << row.at("case");
+    EXPECT_EQ(row.at("detected_as_expected"), "yes") << row.at("case") << ": " << row.at("failure");
+    EXPECT_FALSE(row.at("failure").empty());
+  }
+}

@@ -1,0 +1,391 @@
+// The viewer's engine side: the snapshot hand-off between threads, the command queue, the engine
+// thread (pause, single step, gas velocity, reset, the ideal case) and the view script parser.
+// Built also under the thread sanitizer (scripts/test.sh): the engine thread and a reader thread
+// standing in for the window run together here.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "core/errors.hpp"
+#include "sim/snapshot.hpp"
+#include "view_engine.hpp"
+#include "view_scene.hpp"
+#include "view_script.hpp"
+
+namespace fluidbed {
+namespace {
+
+using app::ViewCommand;
+using app::ViewEngine;
+using K = ViewCommand::Kind;
+using namespace std::chrono_literals;
+
+constexpr auto kTimeout = 120s;  // generous: the sanitizer builds are slow
+
+// ---------------------------------------------------------------------------------------------
+// The snapshot hand-off.
+
+TEST(SnapshotChannel, ReaderGetsTheNewestAndKeepsWhatItHolds) {
+  SnapshotChannel ch;
+  EXPECT_EQ(ch.latest(), nullptr);
+  auto a = ch.acquire();
+  a->time = 1.0;
+  a->x.assign(10, 1.0);
+  ch.publish(a);
+  std::uint64_t seq = 0;
+  auto held = ch.latest(&seq);
+  EXPECT_EQ(seq, 1u);
+  ASSERT_NE(held, nullptr);
+  a.reset();
+  // The writer goes on: the buffer the reader holds is never handed back for filling.
+  for (int k = 2; k <= 5; ++k) {
+    auto b = ch.acquire();
+    EXPECT_NE(b.get(), held.get());
+    b->time = k;
+    b->x.assign(10, static_cast<double>(k));
+    ch.publish(b);
+  }
+  EXPECT_EQ(held->time, 1.0);
+  EXPECT_EQ(held->x[9], 1.0);
+  auto newest = ch.latest(&seq);
+  EXPECT_EQ(seq, 5u);
+  EXPECT_EQ(newest->time, 5.0);
+}
+
+TEST(SnapshotChannel, ReusesTheSpareBufferWhenNoReaderHoldsIt) {
+  SnapshotChannel ch;
+  Snapshot* first = nullptr;
+  {
+    auto a = ch.acquire();
+    first = a.get();
+    ch.publish(a);
+  }
+  ch.publish(ch.acquire());  // the first becomes the spare
+  auto c = ch.acquire();
+  EXPECT_EQ(c.get(), first);  // no reader: no allocation per publish
+}
+
+// A writer thread publishing snapshots whose every value says which one it is, a reader thread
+// taking the newest: a reader never sees a half-written snapshot, and the sequence never goes
+// back. (Under TSan this is the hand-off's race check.)
+TEST(SnapshotChannel, ConcurrentWriterAndReaderSeeWholeSnapshots) {
+  SnapshotChannel ch;
+  constexpr int kPublishes = 3000;
+  std::atomic<bool> done{false};
+  std::thread writer([&] {
+    for (int k = 1; k <= kPublishes; ++k) {
+      auto s = ch.acquire();
+      s->time = k;
+      s->x.assign(256, static_cast<double>(k));
+      s->y.assign(256, static_cast<double>(-k));
+      ch.publish(std::move(s));
+    }
+    done.store(true);
+  });
+  std::uint64_t last = 0;
+  int torn = 0, reads = 0;
+  while (!done.load() || last < kPublishes) {
+    std::uint64_t seq = 0;
+    auto s = ch.latest(&seq);
+    if (!s) continue;
+    ++reads;
+    EXPECT_GE(seq, last);
+    last = seq;
+    for (std::size_t i = 0; i < s->x.size(); ++i)
+      torn += (s->x[i] != s->time || s->y[i] != -s->time) ? 1 : 0;
+    if (done.load() && seq == kPublishes) break;
+  }
+  writer.join();
+  EXPECT_EQ(torn, 0);
+  EXPECT_GT(reads, 0);
+  EXPECT_EQ(ch.latest()->time, kPublishes);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The command queue.
+
+TEST(CommandQueue, KeepsOrderAndWakesAWaitingTaker) {
+  app::CommandQueue q;
+  EXPECT_TRUE(q.take(0ms).empty());
+  q.push({K::velocity, 1.5});
+  q.push({K::pause, 0.0});
+  auto got = q.take(0ms);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0].kind, K::velocity);
+  EXPECT_EQ(got[0].value, 1.5);
+  EXPECT_EQ(got[1].kind, K::pause);
+  std::thread pusher([&] {
+    std::this_thread::sleep_for(20ms);
+    q.push({K::reset, 0.0});
+  });
+  const auto t0 = std::chrono::steady_clock::now();
+  got = q.take(10s);
+  pusher.join();
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].kind, K::reset);
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 5s);  // woken, not timed out
+}
+
+// ---------------------------------------------------------------------------------------------
+// The engine thread.
+
+ViewEngine::Options paused() {
+  ViewEngine::Options o;
+  o.start_running = false;
+  return o;
+}
+
+void post_and_wait(ViewEngine& e, const ViewCommand& c) {
+  e.post(c);
+  ASSERT_TRUE(e.wait_until_stopped(kTimeout)) << "engine did not stop";
+}
+
+TEST(ViewEngine, StartsFromTheSceneAndPublishesIt) {
+  const Settings s = testing::view_test_settings();
+  Simulation reference(s);
+  ViewEngine e(s, paused());
+  e.start();
+  ASSERT_TRUE(e.wait_until_stopped(kTimeout));
+  const app::EngineStatus st = e.status();
+  EXPECT_EQ(st.state_hash, reference.state_hash());  // the viewer starts where `run` starts
+  EXPECT_EQ(st.start_hash, reference.state_hash());
+  EXPECT_EQ(st.particles, 100u);
+  EXPECT_FALSE(st.stepping);
+  auto snap = e.snapshots().latest();
+  ASSERT_NE(snap, nullptr);
+  EXPECT_EQ(snap->particles(), 100u);
+  EXPECT_EQ(snap->step, 0);
+}
+
+TEST(ViewEngine, SingleStepsAndPauseStopSimulatedTime) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  post_and_wait(e, {K::step, 3.0});
+  EXPECT_EQ(e.status().steps, 3);
+  EXPECT_EQ(e.snapshots().latest()->step, 3);
+  EXPECT_NEAR(e.status().time, 3 * s.time.dt, 1e-15);
+
+  e.post({K::run, 0.0});
+  // Running: simulated time moves.
+  const auto t0 = std::chrono::steady_clock::now();
+  while (e.status().steps < 50 && std::chrono::steady_clock::now() - t0 < kTimeout)
+    std::this_thread::sleep_for(1ms);
+  EXPECT_GE(e.status().steps, 50);
+  post_and_wait(e, {K::pause, 0.0});
+  const app::EngineStatus a = e.status();
+  std::this_thread::sleep_for(100ms);
+  const app::EngineStatus b = e.status();
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.time, b.time);
+  EXPECT_EQ(a.state_hash, b.state_hash);
+  EXPECT_EQ(e.snapshots().latest()->step, a.steps);  // the display shows where it stopped
+}
+
+TEST(ViewEngine, VelocityChangesTheJetWithinOneGasStep) {
+  const Settings s = testing::view_test_settings();
+  ASSERT_EQ(s.coupling.particle_steps_per_gas_step, 2);
+  ViewEngine e(s, paused());
+  e.start();
+  post_and_wait(e, {K::step, 2.0});  // one gas step at the scene's 2.0 m/s
+  const double jet0 = e.status().inlet_jet_velocity;
+  ASSERT_GT(jet0, 2.0);  // a jet: faster than the superficial velocity
+  post_and_wait(e, {K::velocity, 3.0});
+  EXPECT_EQ(e.status().superficial_velocity, 3.0);
+  EXPECT_NEAR(e.status().jet_velocity, 3.0 * s.domain.width / s.inlet.jet_width, 1e-12);
+  post_and_wait(e, {K::step, 1.0});  // between gas steps: the gas has not stepped yet
+  EXPECT_EQ(e.status().inlet_jet_velocity, jet0);
+  post_and_wait(e, {K::step, 1.0});  // the next gas step uses the new velocity
+  EXPECT_NEAR(e.status().inlet_jet_velocity, jet0 * 3.0 / 2.0, 1e-9 * jet0);
+}
+
+TEST(ViewEngine, ResetRestoresThePackedStateExactly) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  const std::uint64_t start = e.status().start_hash;
+  post_and_wait(e, {K::velocity, 3.5});
+  post_and_wait(e, {K::step, 40.0});
+  const std::uint64_t after40 = e.status().state_hash;
+  EXPECT_NE(after40, start);
+  post_and_wait(e, {K::step, 20.0});
+  post_and_wait(e, {K::reset, 0.0});
+  const app::EngineStatus r = e.status();
+  EXPECT_EQ(r.state_hash, start);
+  EXPECT_EQ(r.steps, 0);
+  EXPECT_EQ(r.time, 0.0);
+  EXPECT_EQ(r.generation, 1u);
+  EXPECT_EQ(r.superficial_velocity, 2.0);  // the inlet setting is part of the state
+  EXPECT_EQ(e.snapshots().latest()->step, 0);
+  // The same commands from the reset state give the same bits: a reset bed runs as the first.
+  post_and_wait(e, {K::velocity, 3.5});
+  post_and_wait(e, {K::step, 40.0});
+  EXPECT_EQ(e.status().state_hash, after40);
+}
+
+TEST(ViewEngine, IdealCaseKeepsTheStateAndChangesTheContactLaw) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  post_and_wait(e, {K::step, 200.0});
+  const std::uint64_t before = e.status().state_hash;
+  post_and_wait(e, {K::ideal, 1.0});
+  EXPECT_TRUE(e.status().ideal);
+  EXPECT_EQ(e.status().state_hash, before);  // the whole state carried across bit for bit
+  post_and_wait(e, {K::step, 100.0});
+  const std::uint64_t ideal_run = e.status().state_hash;
+  // The same 100 steps with the scene's damping and friction end elsewhere.
+  app::ViewModel plain(s);
+  for (int k = 0; k < 300; ++k) plain.sim().step();
+  EXPECT_NE(plain.sim().state_hash(), ideal_run);
+  // Reset keeps the ideal choice and returns to the start.
+  post_and_wait(e, {K::reset, 0.0});
+  EXPECT_TRUE(e.status().ideal);
+  EXPECT_EQ(e.status().state_hash, e.status().start_hash);
+  // And the ideal model can be left again.
+  post_and_wait(e, {K::ideal, 0.0});
+  EXPECT_FALSE(e.status().ideal);
+  post_and_wait(e, {K::step, 300.0});
+  EXPECT_EQ(e.status().state_hash, plain.sim().state_hash());
+}
+
+TEST(ViewEngine, NegativeVelocityIsTakenAsZero) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  // The panel clamps; a negative velocity from elsewhere is taken as 0.
+  post_and_wait(e, {K::velocity, -1.0});
+  EXPECT_EQ(e.status().superficial_velocity, 0.0);
+  EXPECT_TRUE(e.status().error.empty());
+}
+
+TEST(ViewEngine, RunUntilStopsAtTheNearestStep) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  post_and_wait(e, {K::run_until, 0.0012});
+  EXPECT_EQ(e.status().steps, std::llround(0.0012 / s.time.dt));
+  EXPECT_EQ(e.snapshots().latest()->step, e.status().steps);
+  // The plots: one sample per output interval (1 ms) so far.
+  const auto samples = e.take_samples();
+  ASSERT_EQ(samples.size(), 1u);
+  EXPECT_NEAR(samples[0].t, 0.001, 0.5 * s.time.dt);
+  EXPECT_GT(samples[0].dp, 0.0);
+}
+
+// The engine/viewer pair: the engine runs while a reader thread takes snapshots as a window would
+// and the "panel" sends every kind of command. Every snapshot is whole; the engine never waits.
+TEST(ViewEngine, EngineAndViewerThreadsTogether) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine::Options o;
+  o.publish_interval = 0.0005;
+  ViewEngine e(s, o);
+  e.start();
+  std::atomic<bool> stop{false};
+  std::atomic<int> frames{0}, bad{0};
+  std::thread viewer([&] {
+    std::uint64_t last_seq = 0;
+    while (!stop.load()) {
+      std::uint64_t seq = 0;
+      auto snap = e.snapshots().latest(&seq);
+      const app::EngineStatus st = e.status();
+      (void)e.take_samples();
+      if (!snap || seq == last_seq) {
+        std::this_thread::sleep_for(200us);
+        continue;
+      }
+      last_seq = seq;
+      // "Drawing": read every array.
+      double sum = 0.0;
+      for (std::size_t i = 0; i < snap->particles(); ++i)
+        sum += snap->x[i] + snap->vy[i] + snap->fx[i];
+      bad += (snap->particles() != 100 || snap->gas_ux.size() != 48 || !std::isfinite(sum) ||
+              st.particles != 100)
+                 ? 1
+                 : 0;
+      ++frames;
+    }
+  });
+  const ViewCommand script[] = {{K::velocity, 2.5}, {K::pause, 0}, {K::step, 5},
+                                {K::run, 0},        {K::ideal, 1}, {K::velocity, 1.0},
+                                {K::reset, 0},      {K::ideal, 0}, {K::run, 0}};
+  for (const ViewCommand& c : script) {
+    e.post(c);
+    std::this_thread::sleep_for(30ms);
+  }
+  post_and_wait(e, {K::pause, 0.0});
+  stop.store(true);
+  viewer.join();
+  EXPECT_GT(frames.load(), 3);
+  EXPECT_EQ(bad.load(), 0);
+  EXPECT_TRUE(e.status().error.empty()) << e.status().error;
+  EXPECT_EQ(e.status().generation, 1u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The view script.
+
+TEST(ViewScript, ParsesEveryCommand) {
+  const auto lines = app::parse_view_script(R"(
+# a demo
+at 0.05 velocity 1.8   # faster
+ideal on
+step 3
+wait 0.5
+colour mixing
+gas-arrows off
+track 12
+track off
+zoom 2.5
+screenshot out/a.png
+record out/v.mp4
+record stop
+at 0.1 quit
+)",
+                                            "demo.txt");
+  ASSERT_EQ(lines.size(), 13u);
+  EXPECT_EQ(lines[0].at, 0.05);
+  EXPECT_EQ(lines[0].kind, app::ScriptLine::Kind::velocity);
+  EXPECT_EQ(lines[0].number, 1.8);
+  EXPECT_EQ(lines[0].line, 3);
+  EXPECT_EQ(lines[1].at, -1.0);
+  EXPECT_EQ(lines[1].number, 1.0);
+  EXPECT_EQ(lines[2].number, 3.0);
+  EXPECT_EQ(lines[4].text, "mixing");
+  EXPECT_EQ(lines[5].number, 0.0);
+  EXPECT_EQ(lines[6].number, 12.0);
+  EXPECT_EQ(lines[7].number, -1.0);
+  EXPECT_EQ(lines[9].text, "out/a.png");
+  EXPECT_EQ(lines[10].kind, app::ScriptLine::Kind::record);
+  EXPECT_EQ(lines[11].kind, app::ScriptLine::Kind::record_stop);
+  EXPECT_EQ(lines[12].kind, app::ScriptLine::Kind::quit);
+  EXPECT_EQ(lines[12].at, 0.1);
+}
+
+TEST(ViewScript, NamesTheLineAndTheProblem) {
+  const auto message = [](const std::string& text) {
+    try {
+      app::parse_view_script(text, "s.txt");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("run\njump 3\n").find("s.txt line 2: unknown command 'jump'"),
+            std::string::npos)
+      << message("run\njump 3\n");
+  EXPECT_NE(message("velocity fast").find("line 1"), std::string::npos);
+  EXPECT_NE(message("velocity -1").find(">= 0"), std::string::npos);
+  EXPECT_NE(message("at x quit").find("'at'"), std::string::npos);
+  EXPECT_NE(message("ideal maybe").find("on or off"), std::string::npos);
+  EXPECT_NE(message("colour rainbow").find("unknown colour mode 'rainbow'"), std::string::npos);
+  EXPECT_NE(message("quit now").find("unexpected 'now'"), std::string::npos);
+  EXPECT_NE(message("step 0").find("whole count"), std::string::npos);
+  EXPECT_THROW(app::load_view_script("/nonexistent/script.txt"), InputError);
+}
+
+}  // namespace
+}  // namespace fluidbed

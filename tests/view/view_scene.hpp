@@ -1,0 +1,34 @@
+#pragma once
+// A small coupled bed for the viewer's tests: about a hundred particles on the lattice start with
+// a jet, so that the engine thread steps in microseconds (also under the thread sanitizer).
+#include <string>
+
+#include "scene/scene_loader.hpp"
+
+namespace fluidbed::testing {
+
+inline const char* kViewTestScene = R"(
+[scene]
+name = "view_test"
+[domain]
+width = 0.04
+height = 0.12
+[particles]
+count = 100
+fill_height = 0.05
+[gas]
+cells_x = 4
+cells_y = 12
+[inlet]
+kind = "jet"
+superficial_velocity = 2.0
+jet_width = 0.01
+[coupling]
+particle_steps_per_gas_step = 2
+[time]
+end = 1.0
+)";
+
+inline Settings view_test_settings() { return parse_scene(kViewTestScene, "view_test"); }
+
+}  // namespace fluidbed::testing
