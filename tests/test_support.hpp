@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 #include <fstream>
 #include <string>
 
@@ -57,8 +60,11 @@ inline Particles make_particles(std::initializer_list<std::array<double, 5>> xyv
 }
 
 // A fresh folder under the system temp dir.
+// A fresh folder for this test process: ctest runs tests of one binary side by side in separate
+// processes, so the process id keeps two of them from sharing (and deleting) each other's files.
 inline std::filesystem::path temp_dir(const std::string& name) {
-  auto d = std::filesystem::temp_directory_path() / ("fluidbed-test-" + name);
+  auto d = std::filesystem::temp_directory_path() /
+           ("fluidbed-test-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;

@@ -1,6 +1,7 @@
 // The viewer: picking geometry (no GL), `fluidbed view` in scripted mode in a window (under
 // xvfb-run: ctest's ViewWindowUnderXvfb), its headless fallback, and its bad-input errors.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <stb_image.h>
 
 #include <algorithm>
@@ -107,7 +108,9 @@ ViewRun run_view(const std::filesystem::path& dir, const std::string& args,
 }
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("fluidbed_view_" + name);
+  // Per process: ctest runs this binary's tests side by side.
+  const auto d = std::filesystem::temp_directory_path() /
+                 ("fluidbed_view_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;
