@@ -6,6 +6,10 @@
 #include <thread>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace fluidbed {
 
 // requested <= 0: one per core.
@@ -63,6 +67,22 @@ inline void split_particles(const std::vector<std::size_t>& bounds, std::size_t 
   } else {
     particle_range(n, t, threads, begin, end);
   }
+}
+
+}  // namespace fluidbed
+
+namespace fluidbed {
+
+// The calling thread's number t of T in the current parallel region (0 of 1 outside one or
+// without OpenMP).
+inline void this_thread(int& t, int& T) {
+#ifdef _OPENMP
+  t = omp_get_thread_num();
+  T = omp_get_num_threads();
+#else
+  t = 0;
+  T = 1;
+#endif
 }
 
 }  // namespace fluidbed

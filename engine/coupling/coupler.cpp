@@ -4,9 +4,6 @@
 #include <cmath>
 #include <sstream>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "cfd/gas_solver.hpp"
 #include "core/errors.hpp"
@@ -42,10 +39,7 @@ void Coupler::per_thread(std::size_t n, const std::vector<std::size_t>& split, F
 #pragma omp parallel num_threads(threads_) if (parallel_)
   {
     int t = 0, T = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    T = omp_get_num_threads();
-#endif
+    this_thread(t, T);
     std::size_t b = 0, e = 0;
     split_particles(split, n, t, T, b, e);
     body(t, b, e);

@@ -4,9 +4,6 @@
 #include <cmath>
 #include <sstream>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "core/errors.hpp"
 #include "core/hash.hpp"
@@ -391,17 +388,13 @@ template <bool Incremental>
 void DemSolver::step_particles() {
   const double h = dt_;
   for (auto& a : partial_) a = StepPartial{};
-  bool rebuilt_any = false;
   // One parallel region per step: every loop over particles uses the same block split, so each
   // particle's arrays stay in one core's cache (on a 2-core VM a loop that moves them to the
   // other core costs more than it saves); the pairs are split where the particles are.
 #pragma omp parallel num_threads(threads_) if (parallel_)
   {
     int t = 0, T = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    T = omp_get_num_threads();
-#endif
+    this_thread(t, T);
     std::size_t b = 0, e = 0;
     thread_range(t, T, b, e);
     auto last = PhaseTimes::Clock::now();
@@ -421,7 +414,6 @@ void DemSolver::step_particles() {
       for (const auto& a : partial_) stale = stale || a.stale;
       if (stale) {
         list_.build(state_.particles);
-        rebuilt_any = true;
       }
       if (stale || split_.size() != static_cast<std::size_t>(T) + 1) balance(T);
     }
@@ -434,7 +426,6 @@ void DemSolver::step_particles() {
     partial_[t].outside = after_forces(b, e);
     lap(Phase::Integration);
   }
-  (void)rebuilt_any;
   StepPartial sum;
   for (const auto& a : partial_) {
     sum.outside = sum.outside || a.outside;
