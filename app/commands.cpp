@@ -14,7 +14,7 @@
 #include "frame_output.hpp"
 #include "plots.hpp"
 #include "scene/scene_loader.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 
 namespace fluidbed::app {
 namespace {

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "experiments/sweep.hpp"
-#include "sim/run.hpp"
+#include "run/sweep.hpp"
+#include "run/run.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed::app {

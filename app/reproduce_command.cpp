@@ -11,10 +11,10 @@
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/threads.hpp"
-#include "experiments/sweep.hpp"
+#include "run/sweep.hpp"
 #include "plots.hpp"
 #include "scene/scene_loader.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 #include "sim/simulation.hpp"
 #include "studies/study.hpp"
 

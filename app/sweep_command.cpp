@@ -8,7 +8,7 @@
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
-#include "experiments/sweep.hpp"
+#include "run/sweep.hpp"
 #include "scene/scene_loader.hpp"
 #include "plots.hpp"
 

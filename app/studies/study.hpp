@@ -16,7 +16,7 @@
 
 #include "chart.hpp"
 #include "scene/settings.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 
 namespace fluidbed::app::study {
 

@@ -16,8 +16,8 @@
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "experiments/bounce_tracker.hpp"
-#include "experiments/mechanical_energy.hpp"
+#include "analysis/bounce_tracker.hpp"
+#include "analysis/mechanical_energy.hpp"
 #include "sim/simulation.hpp"
 #include "study.hpp"
 

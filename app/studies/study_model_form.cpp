@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "experiments/sweep.hpp"
+#include "run/sweep.hpp"
 #include "plots.hpp"
 #include "sim/packed_bed.hpp"
 #include "study.hpp"

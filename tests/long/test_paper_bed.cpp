@@ -5,7 +5,7 @@
 
 #include "../test_support.hpp"
 #include "scene/scene_loader.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fluidbed;

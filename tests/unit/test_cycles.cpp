@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "experiments/cycles.hpp"
+#include "analysis/cycles.hpp"
 
 using fluidbed::analyse_cycles;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "../test_support.hpp"
-#include "experiments/mechanical_energy.hpp"
+#include "analysis/mechanical_energy.hpp"
 
 using namespace fluidbed;
 using namespace fluidbed::testing;

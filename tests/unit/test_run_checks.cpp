@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fluidbed;

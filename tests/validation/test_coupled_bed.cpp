@@ -7,9 +7,9 @@
 
 #include "../test_support.hpp"
 #include "coupling/drag.hpp"
-#include "experiments/packing_metrics.hpp"
+#include "analysis/packing_metrics.hpp"
 #include "scene/scene_loader.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fluidbed;

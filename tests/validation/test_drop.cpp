@@ -7,9 +7,9 @@
 #include <numeric>
 
 #include "../test_support.hpp"
-#include "experiments/bounce_tracker.hpp"
+#include "analysis/bounce_tracker.hpp"
 #include "scene/scene_loader.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fluidbed;

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "sim/run.hpp"
+#include "run/run.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fluidbed;

@@ -15,7 +15,7 @@
 
 #include "../test_support.hpp"
 #include "core/errors.hpp"
-#include "experiments/packing_metrics.hpp"
+#include "analysis/packing_metrics.hpp"
 #include "io/liggghts_export.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/placement.hpp"

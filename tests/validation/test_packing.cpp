@@ -4,7 +4,7 @@
 
 #include "../test_support.hpp"
 #include "scene/scene_loader.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 
 using namespace fluidbed;
 

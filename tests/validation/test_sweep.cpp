@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "../test_support.hpp"
-#include "experiments/sweep.hpp"
-#include "experiments/umf_fit.hpp"
+#include "run/sweep.hpp"
+#include "analysis/umf_fit.hpp"
 #include "scene/scene_loader.hpp"
 
 using namespace fluidbed;

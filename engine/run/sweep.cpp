@@ -1,4 +1,4 @@
-#include "experiments/sweep.hpp"
+#include "run/sweep.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -12,7 +12,7 @@
 
 #include "core/errors.hpp"
 #include "sim/packed_bed.hpp"
-#include "sim/run.hpp"
+#include "run/run.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed {

@@ -1,4 +1,4 @@
-#include "experiments/mechanical_energy.hpp"
+#include "analysis/mechanical_energy.hpp"
 
 #include <algorithm>
 #include <cmath>

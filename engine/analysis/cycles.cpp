@@ -1,4 +1,4 @@
-#include "experiments/cycles.hpp"
+#include "analysis/cycles.hpp"
 
 #include <algorithm>
 #include <cmath>

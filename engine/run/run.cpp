@@ -1,4 +1,4 @@
-#include "sim/run.hpp"
+#include "run/run.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -10,9 +10,9 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
-#include "experiments/bounce_tracker.hpp"
-#include "experiments/cycles.hpp"
-#include "experiments/packing_metrics.hpp"
+#include "analysis/bounce_tracker.hpp"
+#include "analysis/cycles.hpp"
+#include "analysis/packing_metrics.hpp"
 
 namespace fluidbed {
 namespace {

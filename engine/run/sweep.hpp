@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/umf_fit.hpp"
+#include "analysis/umf_fit.hpp"
 #include "scene/settings.hpp"
 
 namespace fluidbed {

@@ -1,4 +1,4 @@
-#include "experiments/packing_metrics.hpp"
+#include "analysis/packing_metrics.hpp"
 
 #include <algorithm>
 #include <cmath>

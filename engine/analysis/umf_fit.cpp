@@ -1,4 +1,4 @@
-#include "experiments/umf_fit.hpp"
+#include "analysis/umf_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
