@@ -13,20 +13,20 @@ namespace fluidbed {
 
 struct PairContacts {
   std::vector<std::int32_t> i, j;  // particle indices, i < j, sorted by (i, j)
-  std::vector<double> dn, dt;      // m, normal and tangential displacement
+  std::vector<double> dn, ds;      // m, normal and tangential (shear) displacement
   std::size_t size() const { return i.size(); }
   void clear() {
     i.clear();
     j.clear();
     dn.clear();
-    dt.clear();
+    ds.clear();
   }
 };
 
 struct WallHistory {
   int walls = 0;
   std::vector<std::uint8_t> active;  // [i * walls + w]
-  std::vector<double> dn, dt;        // m
+  std::vector<double> dn, ds;        // m, normal and tangential (shear) displacement
 
   // The same history with walls appended (a state saved without a top wall used in a scene with
   // one): the new walls start untouched.
@@ -40,7 +40,7 @@ struct WallHistory {
         const std::size_t from = i * walls + c, to = i * wall_count + c;
         wider.active[to] = active[from];
         wider.dn[to] = dn[from];
-        wider.dt[to] = dt[from];
+        wider.ds[to] = ds[from];
       }
     *this = std::move(wider);
   }
@@ -49,7 +49,7 @@ struct WallHistory {
     walls = wall_count;
     active.assign(n * wall_count, 0);
     dn.assign(n * wall_count, 0.0);
-    dt.assign(n * wall_count, 0.0);
+    ds.assign(n * wall_count, 0.0);
   }
 };
 

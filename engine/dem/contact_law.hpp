@@ -8,6 +8,7 @@
 // relative to j; the force on i is along -n for compression and against the shear.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace fluidbed {
 
@@ -26,21 +27,22 @@ struct ContactForce {
   bool sliding = false;
 };
 
-// Eqs 3-7 for displacements dn, dt (updated in place when the contact slides: the tangential
+// Eqs 3-7 for the normal displacement dn and the tangential (shear) displacement ds (m; ds is
+// updated in place when the contact slides: the tangential
 // spring is held at the Coulomb limit, so the contact sticks again as soon as the shear
 // reverses). vn = v_r . n, vt = v_r . t + spin terms (eq 15's bracket). The normal spring acts
 // in compression only; the dashpot acts over the whole contact, as in the damped oscillator.
-inline ContactForce contact_force(const ContactParams& p, double dn, double& dt, double vn,
+inline ContactForce contact_force(const ContactParams& p, double dn, double& ds, double vn,
                                   double vt) {
   ContactForce f;
   const double fn_spring = -p.kn * std::max(dn, 0.0);   // eq 3
   f.fn = fn_spring - p.eta_n * vn;                        // eq 6
-  const double ft_spring = -p.kt * dt;                     // eq 4
+  const double ft_spring = -p.kt * ds;                     // eq 4
   const double limit = p.mu * std::fabs(fn_spring);       // eq 5
   if (std::fabs(ft_spring) > limit) {
     f.sliding = true;
     f.ft = ft_spring > 0.0 ? limit : -limit;  // friction alone while sliding
-    if (p.kt > 0.0) dt = -f.ft / p.kt;
+    if (p.kt > 0.0) ds = -f.ft / p.kt;
   } else {
     f.ft = ft_spring - p.eta_t * vt;  // eq 7
   }
@@ -62,6 +64,21 @@ inline double time_since_touch(double px, double py, double wx, double wy, doubl
 // and approaches the wall at speed vn.
 inline double time_since_touch_wall(double overlap, double vn) {
   return vn > 0.0 ? overlap / vn : 0.0;
+}
+
+// Closed forms of the linear spring-dashpot for a head-on contact of effective mass m (kg: m/2
+// for two equal spheres, m against a wall), spring k (N/m) and dashpot eta (kg/s).
+//
+// The contact's duration when undamped, half a period: t_c = pi sqrt(m / k) (s). The paper's
+// step is t_c / 9 of a sphere on a wall (1.5e-5 s for 4 mm glass at 50,000 N/m).
+inline double contact_duration(double k, double m) { return std::numbers::pi * std::sqrt(m / k); }
+
+// The restitution coefficient: exp(-pi z / sqrt(1 - z^2)) with z = eta / (2 sqrt(k m)) the
+// damping ratio (0 for an overdamped contact, z >= 1).
+inline double restitution_from_damping(double k, double eta, double m) {
+  const double z = eta / (2.0 * std::sqrt(k * m));
+  if (z >= 1.0) return 0.0;
+  return std::exp(-std::numbers::pi * z / std::sqrt(1.0 - z * z));
 }
 
 }  // namespace fluidbed

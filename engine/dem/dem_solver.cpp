@@ -94,7 +94,7 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
   const std::int32_t* li = L.i.data();
   const std::int32_t* lj = L.j.data();
   double* ldn = L.dn.data();
-  double* ldt = L.dt.data();
+  double* lds = L.ds.data();
   std::uint8_t* touch = L.touching.data();
   double* lfx = L.fx.data();
   double* lfy = L.fy.data();
@@ -110,7 +110,7 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
     const double L2 = px * px + py * py;
     if (L2 >= R * R || L2 <= 0.0) {  // apart (coincident centres are caught as an overlap)
       touch[k] = 0;
-      ldn[k] = ldt[k] = 0.0;
+      ldn[k] = lds[k] = 0.0;
       lfx[k] = lfy[k] = lft[k] = 0.0;
       lratio[k] = L2 <= 0.0 ? 1.0 : 0.0;
       max_ratio = std::max(max_ratio, lratio[k]);
@@ -122,9 +122,9 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
     const double vrx = vx[i] - vx[j], vry = vy[i] - vy[j];
     const double vn = vrx * nx + vry * ny;
     const double vt = vrx * tx + vry * ty + w[i] * r[i] + w[j] * r[j];
-    double dn = ldn[k], dt = ldt[k], tau = dtau;
+    double dn = ldn[k], ds = lds[k], tau = dtau;
     if (!touch[k]) {
-      dn = dt = 0.0;
+      dn = ds = 0.0;
       if (Incremental) tau = std::min(time_since_touch(px, py, -vrx, -vry, R, Lc), dtau);  // eq 13
     }
     if constexpr (Incremental) {
@@ -132,11 +132,11 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
     } else {
       dn = R - Lc;
     }
-    dt += vt * tau;  // eqs 15, 17
-    const ContactForce f = contact_force(params, dn, dt, vn, vt);
+    ds += vt * tau;  // eqs 15, 17
+    const ContactForce f = contact_force(params, dn, ds, vn, vt);
     touch[k] = 1;
     ldn[k] = dn;
-    ldt[k] = dt;
+    lds[k] = ds;
     lfx[k] = f.fn * nx + f.ft * tx;
     lfy[k] = f.fn * ny + f.ft * ty;
     lft[k] = f.ft;
@@ -203,7 +203,7 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
         if (wh.active[s]) {
           wh.active[s] = 0;
           wh.dn[s] = 0.0;
-          wh.dt[s] = 0.0;
+          wh.ds[s] = 0.0;
         }
         continue;
       }
@@ -212,18 +212,18 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
       const double tx = -ny, ty = nx;
       const double vn = vx[i] * nx + vy[i] * ny;
       const double vt = vx[i] * tx + vy[i] * ty + w[i] * r[i];
-      double dn = wh.dn[s], dt = wh.dt[s], tau = dtau;
+      double dn = wh.dn[s], ds = wh.ds[s], tau = dtau;
       if (!wh.active[s] && Incremental) tau = std::min(time_since_touch_wall(overlap, vn), dtau);
       if constexpr (Incremental) {
         dn += vn * tau;
       } else {
         dn = overlap;
       }
-      dt += vt * tau;
-      const ContactForce f = contact_force(params, dn, dt, vn, vt);
+      ds += vt * tau;
+      const ContactForce f = contact_force(params, dn, ds, vn, vt);
       wh.active[s] = 1;
       wh.dn[s] = dn;
-      wh.dt[s] = dt;
+      wh.ds[s] = ds;
       fxi += f.fn * nx + f.ft * tx;
       fyi += f.fn * ny + f.ft * ty;
       tqi += r[i] * f.ft;
@@ -244,101 +244,20 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
 
 // The integrator's part before the forces (predictor, kick-drift) for particles [b, e).
 void DemSolver::before_forces(std::size_t b, std::size_t e) {
-  Particles& P = state_.particles;
-  const double h = dt_;
-  double* x = P.x.data();
-  double* y = P.y.data();
-  double* vx = P.vx.data();
-  double* vy = P.vy.data();
-  double* w = P.w.data();
-  const double* ax = P.ax.data();
-  const double* ay = P.ay.data();
-  const double* aw = P.aw.data();
-  switch (integrator_) {
-    case Integrator::Newmark: {
-      // Eqs 24-28 with alpha = 1/2, beta = 1/4: predict, evaluate forces at the prediction,
-      // correct with the new acceleration.
-      const double hh4 = 0.25 * h * h;
-      for (std::size_t i = b; i < e; ++i) {
-        x[i] += h * vx[i] + hh4 * ax[i];
-        y[i] += h * vy[i] + hh4 * ay[i];
-        vx[i] += 0.5 * h * ax[i];
-        vy[i] += 0.5 * h * ay[i];
-        w[i] += 0.5 * h * aw[i];
-      }
-      break;
-    }
-    case Integrator::VelocityVerlet:  // kick half, drift, forces with the half-step velocity
-      for (std::size_t i = b; i < e; ++i) {
-        vx[i] += 0.5 * h * ax[i];
-        vy[i] += 0.5 * h * ay[i];
-        w[i] += 0.5 * h * aw[i];
-        x[i] += h * vx[i];
-        y[i] += h * vy[i];
-      }
-      break;
-    case Integrator::SymplecticEuler:  // forces first
-      break;
-  }
+  predict(integrator_, dt_, state_.particles, b, e);
 }
 
 // The integrator's part after the forces (corrector, kick, Euler update) for particles [b, e),
 // and each block's kinetic energy. Returns true when one of them has left the box.
 bool DemSolver::after_forces(std::size_t b, std::size_t e) {
-  Particles& P = state_.particles;
-  const double h = dt_;
-  double* x = P.x.data();
-  double* y = P.y.data();
-  double* vx = P.vx.data();
-  double* vy = P.vy.data();
-  double* w = P.w.data();
-  double* ax = P.ax.data();
-  double* ay = P.ay.data();
-  double* aw = P.aw.data();
-  const double* fx = P.fx.data();
-  const double* fy = P.fy.data();
-  const double* tq = P.torque.data();
-  const double* im = P.inv_mass.data();
+  correct(integrator_, dt_, state_.particles, b, e);
+  const Particles& P = state_.particles;
+  const double* x = P.x.data();
+  const double* y = P.y.data();
+  const double* vx = P.vx.data();
+  const double* vy = P.vy.data();
+  const double* w = P.w.data();
   const double* ii = P.inv_inertia.data();
-  switch (integrator_) {
-    case Integrator::Newmark: {
-      const double hh4 = 0.25 * h * h;
-      for (std::size_t i = b; i < e; ++i) {
-        const double axi = fx[i] * im[i], ayi = fy[i] * im[i], awi = tq[i] * ii[i];
-        vx[i] += 0.5 * h * axi;
-        vy[i] += 0.5 * h * ayi;
-        w[i] += 0.5 * h * awi;
-        x[i] += hh4 * axi;
-        y[i] += hh4 * ayi;
-        ax[i] = axi;
-        ay[i] = ayi;
-        aw[i] = awi;
-      }
-      break;
-    }
-    case Integrator::VelocityVerlet:
-      for (std::size_t i = b; i < e; ++i) {
-        ax[i] = fx[i] * im[i];
-        ay[i] = fy[i] * im[i];
-        aw[i] = tq[i] * ii[i];
-        vx[i] += 0.5 * h * ax[i];
-        vy[i] += 0.5 * h * ay[i];
-        w[i] += 0.5 * h * aw[i];
-      }
-      break;
-    case Integrator::SymplecticEuler:
-      for (std::size_t i = b; i < e; ++i) {
-        ax[i] = fx[i] * im[i];
-        ay[i] = fy[i] * im[i];
-        aw[i] = tq[i] * ii[i];
-        vx[i] += h * ax[i];
-        vy[i] += h * ay[i];
-        w[i] += h * aw[i];
-        x[i] += h * vx[i];
-        y[i] += h * vy[i];
-      }
-      break;
-  }
   const double* m = P.mass.data();
   for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk) {
     const std::size_t q1 = std::min(e, (blk + 1) * kParticleBlock);
@@ -532,11 +451,11 @@ std::uint64_t DemSolver::configuration_hash() const {
     h.value(L.i[k]);
     h.value(L.j[k]);
     h.value(L.dn[k]);
-    h.value(L.dt[k]);
+    h.value(L.ds[k]);
   }
   h.values(state_.walls.active);
   h.values(state_.walls.dn);
-  h.values(state_.walls.dt);
+  h.values(state_.walls.ds);
   return h.digest();
 }
 

@@ -10,6 +10,7 @@
 #include "core/phase_timer.hpp"
 #include "dem/contact_history.hpp"
 #include "dem/contact_law.hpp"
+#include "dem/integrators.hpp"
 #include "dem/neighbour_list.hpp"
 #include "dem/particles.hpp"
 #include "dem/walls.hpp"
@@ -17,7 +18,6 @@
 
 namespace fluidbed {
 
-enum class Integrator { Newmark, VelocityVerlet, SymplecticEuler };
 Integrator parse_integrator(const std::string& name);
 
 // Everything that defines where a run is: saved and loaded bit-exactly. The pair history lives

@@ -48,7 +48,7 @@ void NeighbourList::export_history(PairContacts& out) const {
     out.i.push_back(i[k]);
     out.j.push_back(j[k]);
     out.dn.push_back(dn[k]);
-    out.dt.push_back(dt[k]);
+    out.ds.push_back(ds[k]);
   }
 }
 
@@ -82,12 +82,12 @@ void NeighbourList::build(const Particles& p, const PairContacts* seed) {
 
   // Merge the old history (sorted by pair) into the new slots.
   ndn_.assign(m, 0.0);
-  ndt_.assign(m, 0.0);
+  nds_.assign(m, 0.0);
   nt_.assign(m, 0);
   const std::vector<std::int32_t>& oi = seed ? seed->i : i;
   const std::vector<std::int32_t>& oj = seed ? seed->j : j;
   const std::vector<double>& odn = seed ? seed->dn : dn;
-  const std::vector<double>& odt = seed ? seed->dt : dt;
+  const std::vector<double>& ods = seed ? seed->ds : ds;
   auto key = [](std::int32_t u, std::int32_t v) {
     return static_cast<std::uint64_t>(u) << 32 | static_cast<std::uint32_t>(v);
   };
@@ -99,7 +99,7 @@ void NeighbourList::build(const Particles& p, const PairContacts* seed) {
       const bool was_touching = seed ? true : touching[o] != 0;
       if (was_touching) {
         ndn_[k] = odn[o];
-        ndt_[k] = odt[o];
+        nds_[k] = ods[o];
         nt_[k] = 1;
       }
     }
@@ -107,7 +107,7 @@ void NeighbourList::build(const Particles& p, const PairContacts* seed) {
   i.swap(ni_);
   j.swap(nj_);
   dn.swap(ndn_);
-  dt.swap(ndt_);
+  ds.swap(nds_);
   touching.swap(nt_);
   seeded_ = false;
   seed_.clear();

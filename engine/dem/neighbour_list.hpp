@@ -38,7 +38,7 @@ class NeighbourList {
 
   // Per candidate pair.
   std::vector<std::int32_t> i, j;
-  std::vector<double> dn, dt;           // m, history (0 while not touching)
+  std::vector<double> dn, ds;           // m, normal and tangential (shear) displacement; 0 while apart
   std::vector<std::uint8_t> touching;   // touching at the last evaluation
   std::vector<double> fx, fy, ft;       // N: force on i (x, y) and its tangential component
   std::vector<double> ratio;            // overlap ratio (0 while not touching)
@@ -57,7 +57,7 @@ class NeighbourList {
   std::vector<std::int32_t> counts_;
   // Scratch of build(), swapped with the live arrays (capacity kept: no allocation once warm).
   std::vector<std::int32_t> ni_, nj_, near_;
-  std::vector<double> ndn_, ndt_;
+  std::vector<double> ndn_, nds_;
   std::vector<std::uint8_t> nt_;
 };
 

@@ -3,6 +3,7 @@
 // x-y plane on the slab's mid-plane, spin is about z only. A full 3D extension adds z, vz, az and
 // the x, y spin components as further arrays beside these; nothing here assumes a pair count.
 #include <cstddef>
+#include <numbers>
 #include <cstdint>
 #include <vector>
 
@@ -36,7 +37,7 @@ struct Particles {
 
   // Sets radius and the derived mass properties of particle i from its diameter and density.
   void set_sphere(std::size_t i, double diameter, double density) {
-    constexpr double kPi = 3.14159265358979323846;
+    constexpr double kPi = std::numbers::pi;
     radius[i] = 0.5 * diameter;
     mass[i] = density * kPi * diameter * diameter * diameter / 6.0;
     inv_mass[i] = 1.0 / mass[i];

@@ -31,10 +31,10 @@ void write_state(std::ostream& out, const DemState& s) {
   put_vec(out, s.pairs.i);
   put_vec(out, s.pairs.j);
   put_vec(out, s.pairs.dn);
-  put_vec(out, s.pairs.dt);
+  put_vec(out, s.pairs.ds);
   put_vec(out, s.walls.active);
   put_vec(out, s.walls.dn);
-  put_vec(out, s.walls.dt);
+  put_vec(out, s.walls.ds);
 }
 
 DemState read_state(std::istream& in, const std::string& origin) {
@@ -60,11 +60,11 @@ DemState read_state(std::istream& in, const std::string& origin) {
   src.get_vec(s.pairs.i);
   src.get_vec(s.pairs.j, static_cast<std::int64_t>(s.pairs.i.size()));
   src.get_vec(s.pairs.dn, static_cast<std::int64_t>(s.pairs.i.size()));
-  src.get_vec(s.pairs.dt, static_cast<std::int64_t>(s.pairs.i.size()));
+  src.get_vec(s.pairs.ds, static_cast<std::int64_t>(s.pairs.i.size()));
   s.walls.walls = walls;
   src.get_vec(s.walls.active, n * walls);
   src.get_vec(s.walls.dn, n * walls);
-  src.get_vec(s.walls.dt, n * walls);
+  src.get_vec(s.walls.ds, n * walls);
   // Pairs: i < j, inside the particle range, sorted by (i, j).
   for (std::size_t k = 0; k < s.pairs.size(); ++k) {
     const auto i = s.pairs.i[k], j = s.pairs.j[k];

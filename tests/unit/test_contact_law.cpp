@@ -14,8 +14,8 @@ ContactParams paper() { return ContactParams{50000.0, 50000.0, 0.15, 0.15, 0.3};
 
 TEST(ContactLaw, NormalSpringPushesApart) {
   // delta_n = 1e-5 m at rest: f_n = -kappa_n delta_n = -0.5 N (towards -n, away from j).
-  double dt = 0.0;
-  const auto f = contact_force(paper(), 1e-5, dt, 0.0, 0.0);
+  double ds = 0.0;
+  const auto f = contact_force(paper(), 1e-5, ds, 0.0, 0.0);
   EXPECT_DOUBLE_EQ(f.fn, -0.5);
   EXPECT_DOUBLE_EQ(f.ft, 0.0);
   EXPECT_FALSE(f.sliding);
@@ -23,37 +23,37 @@ TEST(ContactLaw, NormalSpringPushesApart) {
 
 TEST(ContactLaw, NormalDampingOpposesApproach) {
   // Approaching at v_n = 2 m/s with delta_n = 1e-5: -0.5 N spring, -0.15 * 2 = -0.3 N dashpot.
-  double dt = 0.0;
-  const auto f = contact_force(paper(), 1e-5, dt, 2.0, 0.0);
+  double ds = 0.0;
+  const auto f = contact_force(paper(), 1e-5, ds, 2.0, 0.0);
   EXPECT_NEAR(f.fn, -0.8, 1e-15);
   // Separating at 2 m/s: the dashpot pulls back (+0.3 N), the spring still pushes (-0.5 N).
-  const auto g = contact_force(paper(), 1e-5, dt, -2.0, 0.0);
+  const auto g = contact_force(paper(), 1e-5, ds, -2.0, 0.0);
   EXPECT_NEAR(g.fn, -0.2, 1e-15);
 }
 
 TEST(ContactLaw, SpringActsInCompressionOnly) {
-  double dt = 0.0;
-  const auto f = contact_force(paper(), -1e-6, dt, 0.0, 0.0);
+  double ds = 0.0;
+  const auto f = contact_force(paper(), -1e-6, ds, 0.0, 0.0);
   EXPECT_DOUBLE_EQ(f.fn, 0.0);
 }
 
 TEST(ContactLaw, TangentialSpringAndDampingBelowFrictionLimit) {
   // delta_n = 1e-4 (f_cn = 5 N, limit 1.5 N); delta_t = 1e-5 (f_ct = -0.5 N), v_t = 1 m/s
   // (dashpot -0.15 N): sticking, f_t = -0.65 N, delta_t unchanged.
-  double dt = 1e-5;
-  const auto f = contact_force(paper(), 1e-4, dt, 0.0, 1.0);
+  double ds = 1e-5;
+  const auto f = contact_force(paper(), 1e-4, ds, 0.0, 1.0);
   EXPECT_FALSE(f.sliding);
   EXPECT_NEAR(f.ft, -0.65, 1e-15);
-  EXPECT_DOUBLE_EQ(dt, 1e-5);
+  EXPECT_DOUBLE_EQ(ds, 1e-5);
 }
 
 TEST(ContactLaw, FrictionCapKeepsSignAndHoldsSpringAtLimit) {
   // delta_n = 1e-5 (f_cn = 0.5 N, limit 0.15 N); delta_t = -4e-5 (f_ct = +2 N > limit): slides.
-  double dt = -4e-5;
-  const auto f = contact_force(paper(), 1e-5, dt, 0.0, -3.0);
+  double ds = -4e-5;
+  const auto f = contact_force(paper(), 1e-5, ds, 0.0, -3.0);
   EXPECT_TRUE(f.sliding);
   EXPECT_NEAR(f.ft, 0.15, 1e-15);  // the sign of the spring force, no dashpot while sliding
-  EXPECT_NEAR(dt, -0.15 / 50000.0, 1e-20);  // spring held at the Coulomb limit
+  EXPECT_NEAR(ds, -0.15 / 50000.0, 1e-20);  // spring held at the Coulomb limit
   double dt2 = 4e-5;
   const auto g = contact_force(paper(), 1e-5, dt2, 0.0, 3.0);
   EXPECT_NEAR(g.ft, -0.15, 1e-15);
@@ -62,11 +62,11 @@ TEST(ContactLaw, FrictionCapKeepsSignAndHoldsSpringAtLimit) {
 TEST(ContactLaw, FrictionlessContactHasNoTangentialSpringForceWhenSliding) {
   ContactParams p = paper();
   p.mu = 0.0;
-  double dt = 1e-6;
-  const auto f = contact_force(p, 1e-5, dt, 0.0, 1.0);
+  double ds = 1e-6;
+  const auto f = contact_force(p, 1e-5, ds, 0.0, 1.0);
   EXPECT_TRUE(f.sliding);
   EXPECT_DOUBLE_EQ(f.ft, 0.0);
-  EXPECT_DOUBLE_EQ(dt, 0.0);
+  EXPECT_DOUBLE_EQ(ds, 0.0);
 }
 
 TEST(ContactLaw, BackwardProjectedTouchTime) {
