@@ -1,6 +1,7 @@
 #include "analysis/cycles.hpp"
 
 #include <algorithm>
+#include <numbers>
 #include <cmath>
 
 namespace fluidbed {
@@ -30,7 +31,7 @@ CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double
   for (std::size_t k = 0; k < n; ++k) y[k] = signal[k] - mean - slope * (t[k] - t[0] - t_mean);
 
   // Power spectrum on a fine frequency grid within the band (and the record's resolution).
-  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kPi = std::numbers::pi;
   const double f_lo = std::max(0.2, 2.0 / span), f_hi = std::min(25.0, 0.25 / h);
   if (!(f_hi > f_lo)) return s;
   const int bins = 600;

@@ -1,6 +1,7 @@
 #include "analysis/packing_metrics.hpp"
 
 #include <algorithm>
+#include <numbers>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -10,7 +11,7 @@ namespace fluidbed {
 PackingMetrics measure_packing(const Particles& p, double width, double thickness) {
   constexpr double kColumn = 0.01;  // m
   constexpr double kBottomSkip = 0.02, kTopSkip = 0.03;  // m
-  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kPi = std::numbers::pi;
   const int columns = std::max(1, static_cast<int>(std::lround(width / kColumn)));
   std::vector<double> top(columns, -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < p.size(); ++i) {

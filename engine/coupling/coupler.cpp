@@ -1,6 +1,7 @@
 #include "coupling/coupler.hpp"
 
 #include <algorithm>
+#include <numbers>
 #include <cmath>
 #include <sstream>
 
@@ -97,7 +98,7 @@ void Coupler::compute_fluid_forces(Particles& p, const std::vector<std::size_t>&
 }
 
 void Coupler::compute_fluid_forces(Particles& p, std::size_t begin, std::size_t end) {
-  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kPi = std::numbers::pi;
   // Three passes over the range: the gas at each particle (gathers from the cells), the drag
   // coefficient (pure arithmetic over arrays: vectorised), the forces.
   for (std::size_t i = begin; i < end; ++i) {

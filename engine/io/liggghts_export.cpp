@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/steps.hpp"
 #include "dem/contact_law.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/placement.hpp"
@@ -42,10 +43,6 @@ ContactParams contact_params(const Settings& s) {
 
 bool same_law(const ContactParams& a, const ContactParams& b) {
   return a.kn == b.kn && a.kt == b.kt && a.eta_n == b.eta_n && a.eta_t == b.eta_t && a.mu == b.mu;
-}
-
-std::int64_t steps_for(double seconds, double dt) {
-  return static_cast<std::int64_t>(std::llround(seconds / dt));
 }
 
 void check_integrator(const Settings& s, const std::string& what) {

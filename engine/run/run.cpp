@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/steps.hpp"
 #include "analysis/bounce_tracker.hpp"
 #include "analysis/cycles.hpp"
 #include "analysis/packing_metrics.hpp"
@@ -60,9 +61,9 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   const Settings& s = sim.settings();
   const double dt = s.time.dt;
   const double until = options.until >= 0.0 ? options.until : s.time.end;
-  const auto last_step = static_cast<std::int64_t>(std::llround(until / dt));
+  const auto last_step = steps_for(until, dt);
   const auto row_every =
-      std::max<std::int64_t>(1, std::llround(s.diagnostics.output_interval / dt));
+      std::max<std::int64_t>(1, steps_for(s.diagnostics.output_interval, dt));
   const double startup = s.diagnostics.averaging_start;
 
   std::optional<BounceTracker> bounces;

@@ -1,6 +1,7 @@
 #include "run/sweep.hpp"
 
 #include <algorithm>
+#include <numbers>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -153,7 +154,7 @@ SweepResult run_sweep(const Settings& scene, const SweepOptions& options) {
     dps.push_back(result.up[n - 1].dp_mean);
   }
   result.umf = fit_umf(us, dps);
-  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kPi = std::numbers::pi;
   const double d = scene.particles.diameter;
   const double mass = scene.particles.count * scene.particles.density * kPi * d * d * d / 6.0;
   result.bed_weight_per_area =

@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "core/hash.hpp"
+#include "core/steps.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/placement.hpp"
 #include "sim/simulation.hpp"
@@ -71,7 +72,7 @@ std::string packed_bed_state(const Settings& bed,
     notify("packing the bed first (" + std::to_string(packing.particles.count) + " particles, " +
            std::to_string(packing.time.end) + " s); cached as " + path.string());
   Simulation sim(packing);
-  const auto steps = static_cast<std::int64_t>(std::llround(packing.time.end / packing.time.dt));
+  const auto steps = steps_for(packing.time.end, packing.time.dt);
   while (sim.steps() < steps) sim.step();
   sim.save_state(path.string());
   return path.string();

@@ -16,6 +16,7 @@
 
 #include "../test_support.hpp"
 #include "core/errors.hpp"
+#include "dem/contact_law.hpp"
 #include "io/openfoam_export.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/placement.hpp"
@@ -256,7 +257,7 @@ TEST(OpenfoamExport, RestitutionIntegratorAgainstClosedForms) {
   const double c = 1e-3, alpha = c / std::pow(v / omega, 0.25);
   const double integral = std::tgamma(0.625) * std::tgamma(1.5) / std::tgamma(2.125);
   EXPECT_NEAR(dpm_restitution(k, m, alpha, v), std::sqrt(1.0 - 2.0 * c * integral), 2e-6);
-  EXPECT_NEAR(linear_restitution(k, 0.15, m), analytic_restitution(k, 0.15, m), 1e-15);
+  EXPECT_NEAR(restitution_from_damping(k, 0.15, m), analytic_restitution(k, 0.15, m), 1e-15);
 }
 
 // Wen-Yu is the drag nearest fluidbed's Di Felice where the bed sits near minimum fluidization.
