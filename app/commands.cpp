@@ -15,6 +15,7 @@
 #include "plots.hpp"
 #include "scene/scene_loader.hpp"
 #include "run/run.hpp"
+#include "run/packed_bed.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -87,6 +88,7 @@ int run_command(const RunArgs& a) {
   Settings s = load_scene(a.scene, a.overrides);
   s.threads = a.threads;
   const std::string out = a.out.empty() ? default_out(a.scene) : a.out;
+  prepare_packed_bed(s);
   Simulation sim(s);
   std::unique_ptr<TrajectoryRecorder> tracks;
   if (a.plots) {
@@ -137,6 +139,7 @@ int bench_command(const RunArgs& a) {
   const std::string scene = a.scene.empty() ? asset_dir() + "/scenes/packing.toml" : a.scene;
   Settings s = load_scene(scene, a.overrides);
   s.threads = a.threads;
+  prepare_packed_bed(s);
   Simulation sim(s);
   const double until = a.until >= 0.0 ? a.until : s.time.end;
   const RunResult r = run_with_progress(sim, until);

@@ -17,6 +17,7 @@
 #include "run/run.hpp"
 #include "sim/simulation.hpp"
 #include "studies/study.hpp"
+#include "run/packed_bed.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -29,9 +30,10 @@ struct TrackedRun {
   double wall = 0.0;
 };
 
-TrackedRun run_tracked(const Settings& s, double until,
+TrackedRun run_tracked(Settings s, double until,
                        const std::vector<std::pair<double, double>>& track_at) {
   TrackedRun out;
+  prepare_packed_bed(s);
   Simulation sim(s);
   TrajectoryRecorder recorder(nearest_particles(sim.dem().particles(), track_at), 0.005, s.time.dt);
   RunOptions opt;

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "core/errors.hpp"
+#include "run/packed_bed.hpp"
 
 namespace fluidbed::app {
 
@@ -60,7 +61,9 @@ std::string private_temp_dir() {
 ViewModel::ViewModel(const Settings& scene) : scene_(scene), dir_(private_temp_dir()) {
   try {
     start_file_ = dir_ + "/start.state";
-    Simulation first(scene_);  // the scene as `run` starts it (packed bed from the cache)
+    Settings start = scene_;  // the scene as `run` starts it (packed bed from the cache)
+    prepare_packed_bed(start);
+    Simulation first(start);
     first.save_state(start_file_);
     // Every simulation of the viewer, the first included, is built the same way (solvers from
     // the settings, then the saved state), so a run after a reset is the run from the start.

@@ -17,7 +17,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "sim/packed_bed.hpp"
+#include "run/packed_bed.hpp"
 #include "sim/simulation.hpp"
 #include "study.hpp"
 

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "sim/packed_bed.hpp"
+#include "run/packed_bed.hpp"
 #include "study.hpp"
 
 namespace fluidbed::app::study {

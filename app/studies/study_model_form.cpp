@@ -12,7 +12,7 @@
 #include "core/errors.hpp"
 #include "run/sweep.hpp"
 #include "plots.hpp"
-#include "sim/packed_bed.hpp"
+#include "run/packed_bed.hpp"
 #include "study.hpp"
 
 namespace fluidbed::app::study {

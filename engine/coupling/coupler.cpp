@@ -14,11 +14,11 @@
 
 namespace fluidbed {
 
-Coupler::Coupler(const GasGrid& grid, const Settings& s, std::size_t particles)
+Coupler::Coupler(const GasGrid& grid, const CouplerParams& c, std::size_t particles)
     : grid_(grid),
-      rho_f_(s.gas.density),
-      mu_f_(s.gas.viscosity),
-      pressure_gradient_force_(s.coupling.pressure_gradient_force),
+      rho_f_(c.gas_density),
+      mu_f_(c.gas_viscosity),
+      pressure_gradient_force_(c.pressure_gradient_force),
       solid_(static_cast<std::size_t>(grid.cells()), 0.0),
       eps_(static_cast<std::size_t>(grid.cells()), 1.0),
       drag_x_(particles, 0.0),
@@ -26,7 +26,7 @@ Coupler::Coupler(const GasGrid& grid, const Settings& s, std::size_t particles)
       cell_(particles, 0),
       sum_fx_(static_cast<std::size_t>(grid.cells()), 0.0),
       sum_fy_(static_cast<std::size_t>(grid.cells()), 0.0) {
-  threads_ = resolve_threads(s.threads);
+  threads_ = resolve_threads(c.threads);
   parallel_ = threads_ > 1 && particles >= 256;
   sums_.configure(grid.cells(), threads_);
   for (auto* v : {&slip_x_, &slip_y_, &slip_, &eps_at_, &ln_eps_at_, &beta_}) v->assign(particles, 0.0);

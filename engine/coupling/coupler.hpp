@@ -11,11 +11,20 @@
 #include "coupling/block_sums.hpp"
 #include "coupling/porosity.hpp"
 #include "dem/particles.hpp"
-#include "scene/settings.hpp"
 
 namespace fluidbed {
 
 class GasSolver;
+
+// What the coupler needs from a scene, built once from the settings
+// (sim/model_params.hpp: coupler_params_for).
+struct CouplerParams {
+  double gas_density = 1.205;      // kg/m^3
+  double gas_viscosity = 1.8e-5;   // Pa s
+  // Model A (model.md 2.1): the particles feel drag and -V grad p; false: drag alone.
+  bool pressure_gradient_force = true;
+  int threads = 1;                 // inside a step; 0: one per core
+};
 
 // The coupler's part of a saved state (bit-exact restarts mid-run).
 struct CouplingState {
@@ -26,7 +35,7 @@ struct CouplingState {
 
 class Coupler {
  public:
-  Coupler(const GasGrid& grid, const Settings& s, std::size_t particles);
+  Coupler(const GasGrid& grid, const CouplerParams& params, std::size_t particles);
 
   // Eq 22: the porosity of every cell from the particles' positions. Throws SimulationFailure
   // naming the cell when a porosity leaves (0, 1].

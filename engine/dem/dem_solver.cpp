@@ -12,37 +12,29 @@
 namespace fluidbed {
 
 Integrator parse_integrator(const std::string& name) {
-  if (name == "newmark") return Integrator::Newmark;
-  if (name == "velocity_verlet") return Integrator::VelocityVerlet;
-  if (name == "symplectic_euler") return Integrator::SymplecticEuler;
-  throw InputError("time.integrator: unknown integrator \"" + name + "\"");
+  return parse_option<Integrator>("time.integrator", name);
 }
 
-DemSolver::DemSolver(const Settings& s, Particles particles)
-    : walls_(slab_walls(s.domain)),
-      integrator_(parse_integrator(s.time.integrator)),
-      incremental_(s.contact.displacement == "incremental"),
-      frozen_(s.particles.frozen),
-      dt_(s.time.dt),
-      gravity_(s.physics.gravity),
-      width_(s.domain.width),
-      height_(s.domain.height),
-      overlap_limit_(s.diagnostics.overlap_limit) {
-  params_.kn = s.contact.stiffness;
-  params_.kt = s.contact.stiffness * s.contact.tangential_stiffness_ratio;
-  params_.eta_n = s.contact.damping;
-  params_.eta_t = s.contact.damping * s.contact.tangential_damping_ratio;
-  params_.mu = s.contact.friction;
-
+DemSolver::DemSolver(const DemParams& d, Particles particles)
+    : walls_(d.walls),
+      params_(d.contact),
+      integrator_(d.integrator),
+      incremental_(d.incremental),
+      frozen_(d.frozen),
+      dt_(d.dt),
+      gravity_(d.gravity),
+      width_(d.width),
+      height_(d.height),
+      overlap_limit_(d.overlap_limit) {
   const std::size_t n = particles.size();
-  threads_ = resolve_threads(s.threads);
+  threads_ = resolve_threads(d.threads);
   // A fork costs a microsecond or two: worth it only when a step has real work.
   parallel_ = threads_ > 1 && n >= 256;
   partial_.assign(static_cast<std::size_t>(threads_), StepPartial{});
   block_ke_.assign(particle_blocks(n), 0.0);
   double dmax = 0.0;
   for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
-  list_.configure(width_, height_, dmax, s.contact.skin * dmax, n);
+  list_.configure(width_, height_, dmax, d.skin * dmax, n);
   state_.particles = std::move(particles);
   overlap_.assign(n, 0.0);
   state_.walls.resize(n, static_cast<int>(walls_.size()));

@@ -14,11 +14,26 @@
 #include "dem/neighbour_list.hpp"
 #include "dem/particles.hpp"
 #include "dem/walls.hpp"
-#include "scene/settings.hpp"
 
 namespace fluidbed {
 
 Integrator parse_integrator(const std::string& name);
+
+// What the particle model needs from a scene, built once from the settings
+// (sim/model_params.hpp: dem_params_for).
+struct DemParams {
+  ContactParams contact;                       // eqs 3-7
+  bool incremental = true;                     // eqs 13-17; false: the geometric overlap
+  Integrator integrator = Integrator::Newmark;
+  double dt = 1.5e-5;                          // s
+  double gravity = 9.81;                       // m/s^2, along -y
+  double width = 0.15, height = 0.9;           // m, the box the particles must stay in
+  std::vector<Wall> walls;                     // the slab's planar walls (dem/walls.hpp)
+  double skin = 0.2;                           // neighbour-list skin, fraction of the largest diameter
+  double overlap_limit = 0.2;                  // overlap ratio treated as a runaway
+  bool frozen = false;                         // a fixed bed: nothing moves
+  int threads = 1;                             // inside a step; 0: one per core
+};
 
 // Everything that defines where a run is: saved and loaded bit-exactly. The pair history lives
 // in the solver's neighbour list while it runs; `pairs` holds it only when exported (state files)
@@ -43,8 +58,8 @@ struct StepDiagnostics {
 
 class DemSolver {
  public:
-  // Takes the particles (placed, with mass properties) and builds walls, grid and history.
-  DemSolver(const Settings& settings, Particles particles);
+  // Takes the particles (placed, with mass properties) and builds the grid and history.
+  DemSolver(const DemParams& params, Particles particles);
 
   // One time step of dt. Throws SimulationFailure when the state stops making sense.
   void step();

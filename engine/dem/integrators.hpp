@@ -11,10 +11,9 @@
 #include <cstddef>
 
 #include "dem/particles.hpp"
+#include "scene/options.hpp"  // Integrator
 
 namespace fluidbed {
-
-enum class Integrator { Newmark, VelocityVerlet, SymplecticEuler };
 
 // Particles [b, e) before the forces of a step of h seconds.
 void predict(Integrator integrator, double h, Particles& p, std::size_t b, std::size_t e);

@@ -13,7 +13,7 @@
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "dem/particles.hpp"
-#include "sim/packed_bed.hpp"
+#include "run/packed_bed.hpp"
 #include "sim/placement.hpp"
 
 namespace fluidbed {

@@ -1,29 +1,15 @@
 #pragma once
-// Running a simulation to an end time while recording the timeseries and the summary (the output
-// contract of docs/architecture: summary.json keys, timeseries.csv columns).
+// Running a simulation to an end time: the loop (steps, checks after each gas step, the
+// callers' hooks) around a RunRecorder (run/recorder.hpp), which keeps the timeseries and the
+// summary.
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "run/recorder.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed {
-
-struct TimeseriesRow {
-  double t = 0.0;                       // s
-  double dp = 0.0;                      // Pa
-  double max_overlap_ratio = 0.0;       // largest over the interval since the previous row
-  double max_wall_overlap_ratio = 0.0;  // idem
-  double kinetic_energy = 0.0;          // J
-  int pair_contacts = 0;
-  int wall_contacts = 0;
-  // Gas (zeros without gas): the last gas step's SIMPLE iterations and mass residual, the
-  // largest CFL number over the interval, the total fluid force on the particles (N).
-  int simple_iterations = 0;
-  double mass_residual = 0.0;
-  double max_cfl = 0.0;
-  double fluid_force_y = 0.0;
-};
 
 struct RunOptions {
   double until = -1.0;  // s, simulated time to reach; < 0: the scene's time.end

@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "core/errors.hpp"
-#include "sim/packed_bed.hpp"
+#include "run/packed_bed.hpp"
 #include "run/run.hpp"
 #include "sim/simulation.hpp"
 
@@ -69,8 +69,9 @@ std::vector<double> default_sweep_velocities() {
   return v;
 }
 
-SweepResult run_sweep(const Settings& scene, const SweepOptions& options) {
+SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) {
   SweepOptions o = options;
+  Settings scene = sweep_scene;
   if (o.velocities.empty()) o.velocities = default_sweep_velocities();
   if (o.out_dir.empty()) throw InputError("sweep: an output folder is needed");
   if (!scene.gas.enabled) throw InputError("sweep: the scene has no [gas] section");
@@ -86,9 +87,7 @@ SweepResult run_sweep(const Settings& scene, const SweepOptions& options) {
 
   const auto start = std::chrono::steady_clock::now();
   // Pack once before the runs share the cache.
-  if (scene.particles.placement == "packed") {
-    packed_bed_state(scene, o.log);
-  }
+  prepare_packed_bed(scene, o.log);
   const std::size_t n = o.velocities.size();
   SweepResult result;
   result.up.resize(n);

@@ -125,6 +125,10 @@ struct Settings {
   CouplingSettings coupling;
   DiagnosticsSettings diagnostics;
   std::string source_dir = ".";  // folder of the scene file, for relative paths (not a TOML key)
+  // The packed bed's state file for placement "packed" (not a TOML key). A Simulation never
+  // makes it: the caller asks for it (run/packed_bed.hpp: prepare_packed_bed), which runs and
+  // caches the packing when needed.
+  std::string packed_state;
   // Threads inside a step (not a TOML key: the command line's --threads, default one per core).
   // 0: one per core. The library default is 1 so that tests and parallel sweeps never
   // oversubscribe the cores; results are the same bits for any count.

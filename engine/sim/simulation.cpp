@@ -6,7 +6,7 @@
 
 #include "core/errors.hpp"
 #include "core/hash.hpp"
-#include "sim/packed_bed.hpp"
+#include "sim/model_params.hpp"
 #include "sim/placement.hpp"
 #include "sim/state_file.hpp"
 
@@ -15,11 +15,16 @@ namespace {
 
 DemSolver make_dem(const Settings& s) {
   if (s.particles.placement != "state" && s.particles.placement != "packed")
-    return DemSolver(s, place_particles(s));
+    return DemSolver(dem_params_for(s), place_particles(s));
   // A saved configuration starts a new experiment: its contact history is kept, its clock
   // restarts, and the gas starts from rest with this scene's inflow.
   Settings from = s;
-  if (s.particles.placement == "packed") from.particles.state_file = packed_bed_state(s);
+  if (s.particles.placement == "packed") {
+    if (s.packed_state.empty())
+      throw InputError("particles.placement = \"packed\": the packed bed was not prepared "
+                       "(prepare_packed_bed, run/packed_bed.hpp, before building the simulation)");
+    from.particles.state_file = s.packed_state;
+  }
   DemState st = load_scene_state(from);
   st.time = 0.0;
   st.step = 0;
@@ -28,48 +33,19 @@ DemSolver make_dem(const Settings& s) {
   const int walls = static_cast<int>(slab_walls(s.domain).size());
   if (st.walls.walls == walls - 1 && s.domain.top_wall) st.walls.add_walls(walls);
   Particles p = st.particles;
-  DemSolver dem(s, std::move(p));
+  DemSolver dem(dem_params_for(s), std::move(p));
   dem.set_state(std::move(st));
   return dem;
 }
 
 }  // namespace
 
-GasGrid gas_grid_for(const Settings& s) {
-  GasGrid g;
-  g.nx = s.gas.cells_x;
-  g.ny = s.gas.cells_y;
-  g.width = s.domain.width;
-  g.height = s.domain.height;
-  g.depth = s.domain.thickness;
-  return g;
-}
-
-GasParams gas_params_for(const Settings& s) {
-  GasParams p;
-  p.density = s.gas.density;
-  p.viscosity = s.gas.viscosity;
-  p.gravity = s.physics.gravity;
-  p.inlet = s.inlet.kind;
-  p.superficial_velocity = s.inlet.superficial_velocity;
-  p.jet_width = s.inlet.jet_width;
-  p.jets = s.inlet.jets;
-  p.tolerance = s.gas.tolerance;
-  p.max_iterations = s.gas.max_iterations;
-  // The drag of the lower half of a bottom-row cell acts where the inflow velocity is fixed: it is
-  // carried by the bottom wall's pressure, not moved onto the face above (which would bias the
-  // bottom-row pressure gradient and the bed's pressure drop by 0.75 F dy / eps). The third-law
-  // check counts force_on_gas + force_on_walls.
-  p.wall_force_to_interior = false;
-  return p;
-}
-
 Simulation::Simulation(const Settings& s)
     : settings_(s), dem_(make_dem(s)), initial_y_(dem_.particles().y) {
   if (!s.gas.enabled) return;
   const GasGrid grid = gas_grid_for(s);
   gas_ = std::make_unique<GasSolver>(grid, gas_params_for(s));
-  coupler_ = std::make_unique<Coupler>(grid, s, particle_count());
+  coupler_ = std::make_unique<Coupler>(grid, coupler_params_for(s), particle_count());
   Particles& p = dem_.particles();
   gas_->set_porosity(coupler_->compute_porosity(p, time()));
   coupler_->refresh_cells(*gas_);

@@ -78,7 +78,5 @@ class Simulation {
   CouplingDiagnostics coupling_diag_;
 };
 
-GasGrid gas_grid_for(const Settings& s);
-GasParams gas_params_for(const Settings& s);
 
 }  // namespace fluidbed

@@ -17,6 +17,7 @@
 #include "sim/simulation.hpp"
 #include "sim/snapshot.hpp"
 #include "video_writer.hpp"
+#include "run/packed_bed.hpp"
 
 namespace {
 
@@ -39,7 +40,8 @@ int main(int argc, char** argv) {
     else if (a == "--size" && i + 1 < argc) std::sscanf(argv[++i], "%dx%d", &width, &height);
     else scene = a;
   }
-  const Settings s = load_scene(scene, {});
+  Settings s = load_scene(scene, {});
+  prepare_packed_bed(s);
   Simulation sim(s);
   const auto steps = static_cast<long>(warmup / s.time.dt);
   auto t0 = Clock::now();

@@ -6,12 +6,15 @@
 #include "../test_support.hpp"
 #include "scene/scene_loader.hpp"
 #include "run/run.hpp"
+#include "sim/model_params.hpp"
 #include "sim/simulation.hpp"
+#include "run/packed_bed.hpp"
 
 using namespace fluidbed;
 
 TEST(PaperBed, JetBedBubblesAroundItsWeight) {
-  const Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml");
+  Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml");
+  prepare_packed_bed(s);
   Simulation sim(s);
   const GasGrid grid = gas_grid_for(s);
   const int jet_column = grid.column(0.5 * s.domain.width);

@@ -12,13 +12,15 @@
 #include "scene/scene_loader.hpp"
 #include "run/run.hpp"
 #include "sim/simulation.hpp"
+#include "run/packed_bed.hpp"
 
 using namespace fluidbed;
 
 namespace {
 
 nlohmann::json run_scene(const std::string& name, double until) {
-  const Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/" + name);
+  Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/" + name);
+  prepare_packed_bed(s);
   Simulation sim(s);
   RunOptions o;
   o.until = until;

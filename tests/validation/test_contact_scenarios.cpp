@@ -6,6 +6,7 @@
 
 #include "../test_support.hpp"
 #include "dem/dem_solver.hpp"
+#include "sim/model_params.hpp"
 
 using namespace fluidbed;
 using namespace fluidbed::testing;
@@ -26,7 +27,7 @@ Collision head_on(double dt, const std::string& integrator, const std::string& d
   s.domain.height = 0.2;
   // 1 mm apart, closing at 1 m/s; tilted line of centres to exercise both axes.
   const double c = std::cos(0.3), sn = std::sin(0.3), gap = 0.005;
-  DemSolver dem(s, make_particles({{0.1 - 0.5 * gap * c, 0.1 - 0.5 * gap * sn, 0.5 * c, 0.5 * sn, 0.0},
+  DemSolver dem(dem_params_for(s), make_particles({{0.1 - 0.5 * gap * c, 0.1 - 0.5 * gap * sn, 0.5 * c, 0.5 * sn, 0.0},
                                    {0.1 + 0.5 * gap * c, 0.1 + 0.5 * gap * sn, -0.5 * c, -0.5 * sn, 0.0}}));
   const Particles& p = dem.particles();
   auto momentum = [&] { return p.mass[0] * p.vx[0] + p.mass[1] * p.vx[1]; };
@@ -62,7 +63,7 @@ TEST(Rolling, SlidingSphereEndsRollingAtFiveSevenths) {
     Settings s = single_particle(0.02, 0.002, 1.0, 0.0);
     s.domain.width = 1.0;
     s.time.integrator = integrator;
-    DemSolver dem(s, make_particles({{0.02, 0.002, 1.0, 0.0, 0.0}}));
+    DemSolver dem(dem_params_for(s), make_particles({{0.02, 0.002, 1.0, 0.0, 0.0}}));
     const auto steps = static_cast<std::int64_t>(0.3 / s.time.dt);
     for (std::int64_t k = 0; k < steps; ++k) dem.step();
     const Particles& p = dem.particles();

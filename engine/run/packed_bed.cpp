@@ -1,4 +1,4 @@
-#include "sim/packed_bed.hpp"
+#include "run/packed_bed.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -76,6 +76,11 @@ std::string packed_bed_state(const Settings& bed,
   while (sim.steps() < steps) sim.step();
   sim.save_state(path.string());
   return path.string();
+}
+
+void prepare_packed_bed(Settings& bed, const std::function<void(const std::string&)>& notify) {
+  if (bed.particles.placement == "packed" && bed.packed_state.empty())
+    bed.packed_state = packed_bed_state(bed, notify);
 }
 
 }  // namespace fluidbed

@@ -22,4 +22,8 @@ std::string cache_dir();
 std::string packed_bed_state(const Settings& bed,
                              const std::function<void(const std::string&)>& notify = {});
 
+// For placement = "packed": sets bed.packed_state (the cached packed bed, made first when
+// needed) so that a Simulation can be built from `bed`. Any other placement: nothing to do.
+void prepare_packed_bed(Settings& bed, const std::function<void(const std::string&)>& notify = {});
+
 }  // namespace fluidbed

@@ -1,0 +1,201 @@
+#include "run/recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "analysis/cycles.hpp"
+#include "analysis/packing_metrics.hpp"
+#include "core/steps.hpp"
+
+namespace fluidbed {
+
+RunRecorder::RunRecorder(const Simulation& sim, std::int64_t last_step)
+    : first_step_(sim.steps()), last_step_(last_step) {
+  const Settings& s = sim.settings();
+  row_every_ = std::max<std::int64_t>(1, steps_for(s.diagnostics.output_interval, s.time.dt));
+  startup_ = s.diagnostics.averaging_start;
+  bed_ = s.scene.kind == "bed";
+  if (s.scene.kind == "drop") bounces_.emplace(sim.dem(), s.physics.gravity);
+  last_gas_steps_ = sim.has_gas() ? sim.coupling_diagnostics().gas_steps : 0;
+}
+
+void RunRecorder::gas_step_done(const CouplingDiagnostics& c) {
+  last_gas_steps_ = c.gas_steps;
+  ++gas_steps_;
+  simple_sum_ += c.gas.simple_iterations;
+  simple_max_ = std::max(simple_max_, c.gas.simple_iterations);
+  pressure_sum_ += c.gas.pressure_iterations_total;
+  not_converged_ += c.gas.converged ? 0 : 1;
+  residual_max_ = std::max(residual_max_, c.gas.mass_residual);
+  cfl_max_ = std::max(cfl_max_, c.gas.max_cfl);
+  third_law_max_ = std::max(third_law_max_, c.third_law_error);
+  pending_.max_cfl = std::max(pending_.max_cfl, c.gas.max_cfl);
+}
+
+bool RunRecorder::after_step(const Simulation& sim) {
+  const StepDiagnostics& d = sim.dem().diagnostics();
+  const double t = sim.time();
+  max_overlap_ = std::max(max_overlap_, d.max_overlap_ratio);
+  if (t > startup_) max_overlap_after_ = std::max(max_overlap_after_, d.max_overlap_ratio);
+  ke_peak_ = std::max(ke_peak_, d.kinetic_energy);
+  pending_.max_overlap_ratio = std::max(pending_.max_overlap_ratio, d.max_overlap_ratio);
+  pending_.max_wall_overlap_ratio = std::max(pending_.max_wall_overlap_ratio, d.max_wall_overlap_ratio);
+  bool gas_stepped = false;
+  if (sim.has_gas()) {
+    const CouplingDiagnostics& c = sim.coupling_diagnostics();
+    if (c.gas_steps != last_gas_steps_) {
+      gas_step_done(c);
+      gas_stepped = true;
+    }
+    if (t > startup_) {
+      const double dp = sim.pressure_drop();
+      dp_sum_ += dp;
+      dp_sq_ += dp * dp;
+      ++dp_samples_;
+    }
+  }
+  if (bounces_) bounces_->observe(sim.dem());
+  if (sim.steps() % row_every_ == 0 || sim.steps() == last_step_) write_row(sim);
+  return gas_stepped;
+}
+
+void RunRecorder::write_row(const Simulation& sim) {
+  const StepDiagnostics& d = sim.dem().diagnostics();
+  const double t = sim.time();
+  pending_.t = t;
+  pending_.dp = sim.pressure_drop();
+  // The start-up peak from the sampled dp: the first gas step's pulse (the incompressible
+  // column set moving in one step, about rho_f H U / dt) is no measurement of the bed.
+  if (sim.has_gas() && pending_.dp > dp_max_) {
+    dp_max_ = pending_.dp;
+    dp_max_time_ = t;
+  }
+  pending_.kinetic_energy = d.kinetic_energy;
+  pending_.pair_contacts = d.pair_contacts;
+  pending_.wall_contacts = d.wall_contacts;
+  if (sim.has_gas()) {
+    pending_.simple_iterations = sim.coupling_diagnostics().gas.simple_iterations;
+    pending_.mass_residual = sim.coupling_diagnostics().gas.mass_residual;
+    // Sampled at the rows only: a loop over every particle at every step would cost as much
+    // as a fifth of a step and pull each thread's particles to one core.
+    double fx = 0.0, fy = 0.0;
+    for (double f : sim.dem().particles().ext_fx) fx += f;
+    for (double f : sim.dem().particles().ext_fy) fy += f;
+    pending_.fluid_force_y = fy;
+    if (t > startup_) {
+      fluid_fx_sum_ += fx;
+      fluid_fy_sum_ += fy;
+      ++fluid_samples_;
+    }
+  }
+  if (t > startup_ && bed_) {
+    const Settings& s = sim.settings();
+    bed_height_sum_ += measure_packing(sim.dem().particles(), s.domain.width, s.domain.thickness).bed_height;
+    ++bed_height_samples_;
+  }
+  rows_.push_back(pending_);
+  pending_ = TimeseriesRow{};
+}
+
+nlohmann::json RunRecorder::summary(const Simulation& sim, double wall) const {
+  const Settings& s = sim.settings();
+  const double dt = s.time.dt;
+  const Particles& p = sim.dem().particles();
+  const std::int64_t steps = sim.steps() - first_step_;
+  const double sim_time = static_cast<double>(steps) * dt;
+  double mass = 0.0;
+  for (double m : p.mass) mass += m;
+
+  nlohmann::json j;
+  j["status"] = "completed";
+  j["scene"] = s.scene.name;
+  j["kind"] = s.scene.kind;
+  j["particles"] = p.size();
+  j["steps"] = steps;
+  j["dt_s"] = dt;
+  j["sim_time_s"] = sim_time;
+  j["end_time_s"] = sim.time();
+  j["wall_time_s"] = wall;
+  j["wall_s_per_sim_s"] = sim_time > 0.0 ? wall / sim_time : 0.0;
+  j["particle_steps_per_s"] =
+      wall > 0.0 ? static_cast<double>(steps) * static_cast<double>(p.size()) / wall : 0.0;
+  j["integrator"] = s.time.integrator;
+  j["contact_displacement"] = s.contact.displacement;
+  j["gas"] = sim.has_gas();
+  j["averaging_start_s"] = startup_;
+  j["dp_mean_pa"] = dp_samples_ > 0 ? nlohmann::json(dp_sum_ / static_cast<double>(dp_samples_))
+                                    : nlohmann::json(nullptr);
+  j["dp_max_pa"] = sim.has_gas() ? nlohmann::json(dp_max_) : nlohmann::json(nullptr);
+  if (sim.has_gas()) add_gas_summary(sim, j);
+  j["bed_weight_per_area_pa"] = mass * s.physics.gravity / (s.domain.width * s.domain.thickness);
+  j["max_overlap_ratio"] = max_overlap_;
+  j["max_overlap_ratio_after_startup"] = max_overlap_after_;
+  j["max_overlap_ratio_final"] = sim.dem().diagnostics().max_overlap_ratio;
+  j["kinetic_energy_peak_j"] = ke_peak_;
+  j["kinetic_energy_final_j"] = sim.dem().diagnostics().kinetic_energy;
+  j["contacts_final"] = sim.dem().diagnostics().pair_contacts + sim.dem().diagnostics().wall_contacts;
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
+  j["state_hash"] = hash;
+  if (bounces_) add_drop_summary(j);
+  if (bed_height_samples_ > 0)  // the bubbling bed's mean height after start-up (rows)
+    j["bed_height_mean_m"] = bed_height_sum_ / static_cast<double>(bed_height_samples_);
+  if (s.scene.kind == "packing" || s.scene.kind == "bed") {
+    const PackingMetrics m = measure_packing(p, s.domain.width, s.domain.thickness);
+    j["bed_height_m"] = m.bed_height;
+    j["solid_fraction"] = m.solid_fraction;
+  }
+  return j;
+}
+
+void RunRecorder::add_gas_summary(const Simulation& sim, nlohmann::json& j) const {
+  const Settings& s = sim.settings();
+  const double n = static_cast<double>(std::max<std::int64_t>(dp_samples_, 1));
+  const double mean = dp_sum_ / n;
+  j["dp_max_time_s"] = dp_max_time_;
+  j["dp_std_pa"] = std::sqrt(std::max(dp_sq_ / n - mean * mean, 0.0));
+  const double nf = static_cast<double>(std::max<std::int64_t>(fluid_samples_, 1));
+  j["fluid_force_mean_n"] = {fluid_fx_sum_ / nf, fluid_fy_sum_ / nf};
+  const GasSolver& g = *sim.gas();
+  j["superficial_velocity_m_s"] = g.superficial_velocity();
+  j["jet_velocity_m_s"] = g.jet_velocity();
+  j["inlet"] = s.inlet.kind;
+  j["pressure_gradient_force"] = s.coupling.pressure_gradient_force;
+  j["particle_steps_per_gas_step"] = s.coupling.particle_steps_per_gas_step;
+  j["gas_steps"] = gas_steps_;
+  const double gs = static_cast<double>(gas_steps_);
+  j["simple_iterations_mean"] = gas_steps_ > 0 ? static_cast<double>(simple_sum_) / gs : 0.0;
+  j["simple_iterations_max"] = simple_max_;
+  j["pressure_iterations_mean"] = gas_steps_ > 0 ? static_cast<double>(pressure_sum_) / gs : 0.0;
+  j["gas_steps_not_converged"] = not_converged_;
+  j["mass_residual_max"] = residual_max_;
+  j["max_cfl"] = cfl_max_;
+  j["third_law_error_max"] = third_law_max_;
+  // How regular dp is after start-up (Figs 16-17): dominant period and cycle-length spread.
+  std::vector<double> ts, dps;
+  for (const auto& row : rows_)
+    if (row.t > startup_) {
+      ts.push_back(row.t);
+      dps.push_back(row.dp);
+    }
+  const CycleStats cyc = analyse_cycles(ts, dps);
+  j["dp_dominant_period_s"] = cyc.ok ? nlohmann::json(cyc.dominant_period) : nlohmann::json(nullptr);
+  j["dp_dominant_power_share"] = cyc.dominant_power_share;
+  j["dp_cycles"] = cyc.cycles;
+  j["dp_cycle_length_mean_s"] = cyc.cycle_mean;
+  j["dp_cycle_length_cv"] = cyc.cycle_cv;
+}
+
+void RunRecorder::add_drop_summary(nlohmann::json& j) const {
+  const auto& e = bounces_->restitutions();
+  const auto apex = bounces_->apex_heights();
+  j["restitution"] = e.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.front());
+  j["rebound_height_ratio"] =
+      apex.empty() ? nlohmann::json(nullptr) : nlohmann::json(apex.front() / bounces_->drop_height());
+  j["drop_height_m"] = bounces_->drop_height();
+  j["bounce_restitutions"] = e;
+  j["bounce_heights_m"] = apex;
+}
+
+}  // namespace fluidbed

@@ -1,0 +1,73 @@
+#pragma once
+// What a run records while it steps: one timeseries row per output interval and the running
+// sums behind summary.json (the output contract of the architecture: summary keys and
+// timeseries columns). The run loop (run/run.hpp) steps the simulation and hands every step to
+// the recorder; the recorder only reads the simulation.
+#include <cmath>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "analysis/bounce_tracker.hpp"
+#include "sim/simulation.hpp"
+
+namespace fluidbed {
+
+struct TimeseriesRow {
+  double t = 0.0;                       // s
+  double dp = 0.0;                      // Pa
+  double max_overlap_ratio = 0.0;       // largest over the interval since the previous row
+  double max_wall_overlap_ratio = 0.0;  // idem
+  double kinetic_energy = 0.0;          // J
+  int pair_contacts = 0;
+  int wall_contacts = 0;
+  // Gas (zeros without gas): the last gas step's SIMPLE iterations and mass residual, the
+  // largest CFL number over the interval, the total fluid force on the particles (N).
+  int simple_iterations = 0;
+  double mass_residual = 0.0;
+  double max_cfl = 0.0;
+  double fluid_force_y = 0.0;
+};
+
+class RunRecorder {
+ public:
+  // Starts recording `sim` as it is now; the run ends at step `last_step`.
+  RunRecorder(const Simulation& sim, std::int64_t last_step);
+
+  // After every step. Returns true when the step ended with a gas step.
+  bool after_step(const Simulation& sim);
+
+  const std::vector<TimeseriesRow>& rows() const { return rows_; }
+  std::vector<TimeseriesRow> take_rows() { return std::move(rows_); }
+  // summary.json of the run so far; wall: seconds of wall time the steps took.
+  nlohmann::json summary(const Simulation& sim, double wall) const;
+
+ private:
+  void gas_step_done(const CouplingDiagnostics& c);
+  void write_row(const Simulation& sim);
+  void add_gas_summary(const Simulation& sim, nlohmann::json& j) const;
+  void add_drop_summary(nlohmann::json& j) const;
+
+  std::int64_t first_step_ = 0, last_step_ = 0, row_every_ = 1;
+  double startup_ = 0.0;  // s, averaging_start: where "after start-up" begins
+  bool bed_ = false;      // scene.kind = "bed": the bed height is sampled at every row
+  std::optional<BounceTracker> bounces_;
+  std::vector<TimeseriesRow> rows_;
+  TimeseriesRow pending_;
+
+  double max_overlap_ = 0.0, max_overlap_after_ = 0.0, ke_peak_ = 0.0;
+  double dp_sum_ = 0.0, dp_sq_ = 0.0, dp_max_ = -INFINITY, dp_max_time_ = 0.0;
+  std::int64_t dp_samples_ = 0;
+  // Gas solver and coupling statistics.
+  int last_gas_steps_ = 0;
+  std::int64_t gas_steps_ = 0, simple_sum_ = 0, pressure_sum_ = 0, not_converged_ = 0;
+  int simple_max_ = 0;
+  double residual_max_ = 0.0, cfl_max_ = 0.0, third_law_max_ = 0.0;
+  double fluid_fx_sum_ = 0.0, fluid_fy_sum_ = 0.0;
+  std::int64_t fluid_samples_ = 0;
+  double bed_height_sum_ = 0.0;  // m, summed over the rows after start-up (beds)
+  std::int64_t bed_height_samples_ = 0;
+};
+
+}  // namespace fluidbed

@@ -1,0 +1,118 @@
+#pragma once
+// The scene's named choices, resolved once: each option is an enum with one table of (name,
+// value, help). The loader turns a TOML string into the enum (an unknown name is refused with the
+// list of known ones), the resolved-scene writer and `fluidbed keys` turn it back, and the rest
+// of the program compares enums, never strings.
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "core/errors.hpp"
+
+namespace fluidbed {
+
+template <class E>
+struct OptionEntry {
+  std::string_view name;
+  E value;
+  std::string_view help;
+};
+
+// What a run measures on top of the common diagnostics.
+enum class SceneKind { Bed, Drop, Packing };
+// Where the particles start.
+enum class Placement { Lattice, Single, State, Packed };
+// How the contact displacements are found.
+enum class Displacement { Incremental, Geometric };
+// The particles' time integrator.
+enum class Integrator { Newmark, VelocityVerlet, SymplecticEuler };
+// What the bottom of the bed lets in.
+enum class InletKind { Jet, Uniform, None };
+
+// The table of each option (specialised below).
+template <class E>
+struct Options;
+
+template <>
+struct Options<SceneKind> {
+  static constexpr std::array<OptionEntry<SceneKind>, 3> entries{{
+      {"bed", SceneKind::Bed, "a bed: the common diagnostics (dp, overlaps, bed height)"},
+      {"drop", SceneKind::Drop, "bounce heights and restitution of a dropped particle"},
+      {"packing", SceneKind::Packing, "bed height and solid fraction of a packing"},
+  }};
+};
+
+template <>
+struct Options<Placement> {
+  static constexpr std::array<OptionEntry<Placement>, 4> entries{{
+      {"lattice", Placement::Lattice,
+       "the paper's random lattice start: cells of one diameter, alternate rows shifted by a "
+       "radius, particles in randomly chosen cells"},
+      {"single", Placement::Single, "one particle at (x, y) with (vx, vy) and spin"},
+      {"state", Placement::State, "positions, velocities, spins and contact history from state_file"},
+      {"packed", Placement::Packed,
+       "the packing of this scene's particles (lattice start, gas at rest, packing_time of "
+       "falling), made once and cached"},
+  }};
+};
+
+template <>
+struct Options<Displacement> {
+  static constexpr std::array<OptionEntry<Displacement>, 2> entries{{
+      {"incremental", Displacement::Incremental,
+       "the paper's eqs 13-17: displacements accumulated from increments, the first over the "
+       "backward-projected time since touching"},
+      {"geometric", Displacement::Geometric, "the normal overlap R_i + R_j - L"},
+  }};
+};
+
+template <>
+struct Options<Integrator> {
+  static constexpr std::array<OptionEntry<Integrator>, 3> entries{{
+      {"newmark", Integrator::Newmark, "the paper's predictor-corrector (eqs 24-28)"},
+      {"velocity_verlet", Integrator::VelocityVerlet, "velocity Verlet"},
+      {"symplectic_euler", Integrator::SymplecticEuler, "symplectic Euler"},
+  }};
+};
+
+template <>
+struct Options<InletKind> {
+  static constexpr std::array<OptionEntry<InletKind>, 3> entries{{
+      {"jet", InletKind::Jet, "a plug through a slot at the centre of the bottom (the paper)"},
+      {"uniform", InletKind::Uniform, "a distributor over the whole bottom"},
+      {"none", InletKind::None, "a closed bottom: the gas at rest"},
+  }};
+};
+
+template <class E>
+constexpr bool is_option_v = requires { Options<E>::entries; };
+
+// The name of a value ("newmark").
+template <class E>
+std::string_view option_name(E value) {
+  for (const auto& e : Options<E>::entries)
+    if (e.value == value) return e.name;
+  return "?";
+}
+
+// The known names, "a, b, c".
+template <class E>
+std::string option_names() {
+  std::string list;
+  for (const auto& e : Options<E>::entries) {
+    if (!list.empty()) list += ", ";
+    list += e.name;
+  }
+  return list;
+}
+
+// The value of a name; an unknown one is an InputError naming `key` and the known names.
+template <class E>
+E parse_option(std::string_view key, std::string_view text) {
+  for (const auto& e : Options<E>::entries)
+    if (e.name == text) return e.value;
+  throw InputError(std::string(key) + " is \"" + std::string(text) + "\"; expected one of: " +
+                   option_names<E>());
+}
+
+}  // namespace fluidbed
