@@ -21,17 +21,16 @@ Coupler::Coupler(const GasGrid& grid, const CouplerParams& c, std::size_t partic
       pressure_gradient_force_(c.pressure_gradient_force),
       solid_(static_cast<std::size_t>(grid.cells()), 0.0),
       eps_(static_cast<std::size_t>(grid.cells()), 1.0),
-      drag_x_(particles, 0.0),
-      drag_y_(particles, 0.0),
-      cell_(particles, 0),
-      sum_fx_(static_cast<std::size_t>(grid.cells()), 0.0),
-      sum_fy_(static_cast<std::size_t>(grid.cells()), 0.0) {
+      cell_(particles, 0) {
   threads_ = resolve_threads(c.threads);
   parallel_ = threads_ > 1 && particles >= 256;
   sums_.configure(grid.cells(), threads_);
-  for (auto* v : {&slip_x_, &slip_y_, &slip_, &eps_at_, &ln_eps_at_, &beta_}) v->assign(particles, 0.0);
+  for (auto* v : {&gas_ux_, &gas_uy_, &beta_, &base_fx_, &base_fy_, &drag_x_, &drag_y_, &sum_x_,
+                  &sum_y_, &slip_x_, &slip_y_, &slip_, &eps_at_, &ln_eps_at_})
+    v->assign(particles, 0.0);
   const auto cells = static_cast<std::size_t>(grid.cells());
-  for (auto* v : {&cell_ux_, &cell_uy_, &cell_gx_, &cell_gy_, &ln_eps_}) v->assign(cells, 0.0);
+  for (auto* v : {&cell_ux_, &cell_uy_, &cell_gx_, &cell_gy_, &ln_eps_, &cell_sum_x_, &cell_sum_y_})
+    v->assign(cells, 0.0);
 }
 
 // Runs body(t, b, e) on each thread's particles [b, e) (the split's, or even blocks).
@@ -92,18 +91,19 @@ void Coupler::refresh_cells(const GasSolver& gas) {
   }
 }
 
-void Coupler::compute_fluid_forces(Particles& p, const std::vector<std::size_t>& split) {
-  per_thread(p.size(), split,
-             [&](int, std::size_t b, std::size_t e) { compute_fluid_forces(p, b, e); });
+void Coupler::freeze_drag(Particles& p, const std::vector<std::size_t>& split) {
+  per_thread(p.size(), split, [&](int, std::size_t b, std::size_t e) { freeze_range(p, b, e); });
 }
 
-void Coupler::compute_fluid_forces(Particles& p, std::size_t begin, std::size_t end) {
+void Coupler::freeze_range(Particles& p, std::size_t begin, std::size_t end) {
   constexpr double kPi = std::numbers::pi;
   // Three passes over the range: the gas at each particle (gathers from the cells), the drag
   // coefficient (pure arithmetic over arrays: vectorised), the forces.
   for (std::size_t i = begin; i < end; ++i) {
     const int c = grid_.cell_of(p.x[i], p.y[i]);
     cell_[i] = c;
+    gas_ux_[i] = cell_ux_[c];
+    gas_uy_[i] = cell_uy_[c];
     const double sx = cell_ux_[c] - p.vx[i], sy = cell_uy_[c] - p.vy[i];
     slip_x_[i] = sx;
     slip_y_[i] = sy;
@@ -120,40 +120,82 @@ void Coupler::compute_fluid_forces(Particles& p, std::size_t begin, std::size_t 
     const int c = cell_[i];
     drag_x_[i] = beta_[i] * slip_x_[i];
     drag_y_[i] = beta_[i] * slip_y_[i];
-    double fx = drag_x_[i], fy = drag_y_[i];
+    double bx = 0.0, by = 0.0;
     if (pgf) {
       const double R = p.radius[i];
       const double v = 4.0 / 3.0 * kPi * R * R * R;
-      fx -= v * cell_gx_[c];
-      fy -= v * cell_gy_[c];
+      bx = -(v * cell_gx_[c]);
+      by = -(v * cell_gy_[c]);
     }
-    p.ext_fx[i] = fx;
-    p.ext_fy[i] = fy;
+    base_fx_[i] = bx;
+    base_fy_[i] = by;
+    // drag + (-(V g)) is drag - V g to the last bit; without model A the drag alone.
+    p.ext_fx[i] = pgf ? drag_x_[i] + bx : drag_x_[i];
+    p.ext_fy[i] = pgf ? drag_y_[i] + by : drag_y_[i];
   }
 }
 
-void Coupler::accumulate_drag(const Particles& p, const std::vector<std::size_t>& split) {
-  for (int t = 0; t < sums_.threads(); ++t) sums_.clear(t);
-  per_thread(p.size(), split, [&](int t, std::size_t b, std::size_t e) {
-    sum_blocks(t, b, e, [&](std::size_t i) { sums_.add(t, cell_[i], drag_x_[i], drag_y_[i]); });
-  });
-  sums_.add_to(sum_fx_, &sum_fy_);
+void Coupler::advance_drag(Particles& p, bool update, const std::vector<std::size_t>& split) {
   ++accumulated_;
+  per_thread(p.size(), split, [&](int, std::size_t b, std::size_t e) {
+    double* sx = sum_x_.data();
+    double* sy = sum_y_.data();
+    double* dx = drag_x_.data();
+    double* dy = drag_y_.data();
+    for (std::size_t i = b; i < e; ++i) {
+      sx[i] += dx[i];
+      sy[i] += dy[i];
+    }
+    if (!update) return;
+    const double* beta = beta_.data();
+    const double* ux = gas_ux_.data();
+    const double* uy = gas_uy_.data();
+    const double* bx = base_fx_.data();
+    const double* by = base_fy_.data();
+    const double* vx = p.vx.data();
+    const double* vy = p.vy.data();
+    double* fx = p.ext_fx.data();
+    double* fy = p.ext_fy.data();
+    if (pressure_gradient_force_) {
+      for (std::size_t i = b; i < e; ++i) {
+        dx[i] = beta[i] * (ux[i] - vx[i]);
+        dy[i] = beta[i] * (uy[i] - vy[i]);
+        fx[i] = dx[i] + bx[i];
+        fy[i] = dy[i] + by[i];
+      }
+    } else {
+      for (std::size_t i = b; i < e; ++i) {
+        fx[i] = dx[i] = beta[i] * (ux[i] - vx[i]);
+        fy[i] = dy[i] = beta[i] * (uy[i] - vy[i]);
+      }
+    }
+  });
 }
 
 void Coupler::take_interaction_force(std::vector<double>& fx, std::vector<double>& fy,
-                                     double& total_x, double& total_y) {
-  const std::size_t n = sum_fx_.size();
-  fx.resize(n);
-  fy.resize(n);
+                                     double& total_x, double& total_y,
+                                     const std::vector<std::size_t>& split) {
+  // Each particle's summed drag into its frozen cell, block by block (the same bits for any
+  // thread count), then the sums reset.
+  for (int t = 0; t < sums_.threads(); ++t) sums_.clear(t);
+  const std::size_t n = cell_.size();
+  per_thread(n, split, [&](int t, std::size_t b, std::size_t e) {
+    sum_blocks(t, b, e, [&](std::size_t i) { sums_.add(t, cell_[i], sum_x_[i], sum_y_[i]); });
+    for (std::size_t i = b; i < e; ++i) sum_x_[i] = sum_y_[i] = 0.0;
+  });
+  std::fill(cell_sum_x_.begin(), cell_sum_x_.end(), 0.0);
+  std::fill(cell_sum_y_.begin(), cell_sum_y_.end(), 0.0);
+  sums_.add_to(cell_sum_x_, &cell_sum_y_);
+  const std::size_t cells = cell_sum_x_.size();
+  fx.resize(cells);
+  fy.resize(cells);
   const double scale = accumulated_ > 0 ? 1.0 / (accumulated_ * grid_.cell_volume()) : 0.0;
   total_x = total_y = 0.0;
-  for (std::size_t c = 0; c < n; ++c) {
-    fx[c] = sum_fx_[c] * scale;  // eq 21
-    fy[c] = sum_fy_[c] * scale;
-    total_x += sum_fx_[c];
-    total_y += sum_fy_[c];
-    sum_fx_[c] = sum_fy_[c] = 0.0;
+  for (std::size_t c = 0; c < cells; ++c) {
+    fx[c] = cell_sum_x_[c] * scale;  // eq 21
+    fy[c] = cell_sum_y_[c] * scale;
+    total_x += cell_sum_x_[c];
+    total_y += cell_sum_y_[c];
   }
   if (accumulated_ > 0) {
     total_x /= accumulated_;
@@ -164,27 +206,40 @@ void Coupler::take_interaction_force(std::vector<double>& fx, std::vector<double
 
 void Coupler::save(CouplingState& out) const {
   out.eps = eps_;
+  out.cell = cell_;
+  out.beta = beta_;
+  out.gas_ux = gas_ux_;
+  out.gas_uy = gas_uy_;
+  out.base_fx = base_fx_;
+  out.base_fy = base_fy_;
   out.drag_x = drag_x_;
   out.drag_y = drag_y_;
-  out.sum_fx = sum_fx_;
-  out.sum_fy = sum_fy_;
-  out.cell = cell_;
+  out.sum_x = sum_x_;
+  out.sum_y = sum_y_;
   out.accumulated = accumulated_;
 }
 
 void Coupler::restore(const CouplingState& in, std::size_t particles) {
   const auto cells = static_cast<std::size_t>(grid_.cells());
-  if (in.eps.size() != cells || in.sum_fx.size() != cells || in.sum_fy.size() != cells ||
-      in.drag_x.size() != particles || in.drag_y.size() != particles || in.cell.size() != particles)
+  bool fits = in.eps.size() == cells && in.cell.size() == particles;
+  for (const auto* v : {&in.beta, &in.gas_ux, &in.gas_uy, &in.base_fx, &in.base_fy, &in.drag_x,
+                        &in.drag_y, &in.sum_x, &in.sum_y})
+    fits = fits && v->size() == particles;
+  if (!fits)
     throw InputError("state file's coupling block does not fit this scene's grid or particles");
   for (int c : in.cell)
     if (c < 0 || c >= grid_.cells()) throw InputError("state file's coupling block is inconsistent");
   eps_ = in.eps;
+  cell_ = in.cell;
+  beta_ = in.beta;
+  gas_ux_ = in.gas_ux;
+  gas_uy_ = in.gas_uy;
+  base_fx_ = in.base_fx;
+  base_fy_ = in.base_fy;
   drag_x_ = in.drag_x;
   drag_y_ = in.drag_y;
-  sum_fx_ = in.sum_fx;
-  sum_fy_ = in.sum_fy;
-  cell_ = in.cell;
+  sum_x_ = in.sum_x;
+  sum_y_ = in.sum_y;
   accumulated_ = in.accumulated;
 }
 

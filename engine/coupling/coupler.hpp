@@ -28,8 +28,10 @@ struct CouplerParams {
 
 // The coupler's part of a saved state (bit-exact restarts mid-run).
 struct CouplingState {
-  std::vector<double> eps, drag_x, drag_y, sum_fx, sum_fy;
-  std::vector<int> cell;
+  std::vector<double> eps;                            // per cell
+  std::vector<int> cell;                              // per particle, frozen at the last gas step
+  std::vector<double> beta, gas_ux, gas_uy, base_fx, base_fy;  // idem
+  std::vector<double> drag_x, drag_y, sum_x, sum_y;   // per particle: last drag, summed drag
   int accumulated = 0;
 };
 
@@ -48,23 +50,37 @@ class Coupler {
   // Reads the gas field into per-cell arrays (velocity, pressure gradient, ln eps); call after
   // every gas step and whenever the gas state is replaced.
   void refresh_cells(const GasSolver& gas);
-  // Eqs 8-12 (and -V grad p for model A) on every particle from the gas field read by the last
-  // refresh_cells and the particles' current velocities, written to Particles::ext_fx/ext_fy.
-  void compute_fluid_forces(Particles& p, const std::vector<std::size_t>& split = {});
-  // The same for particles [begin, end) only (a thread's share inside a parallel region).
-  void compute_fluid_forces(Particles& p, std::size_t begin, std::size_t end);
 
-  // Adds the drag of the step just taken to the per-cell sums (call after each particle step).
-  void accumulate_drag(const Particles& p, const std::vector<std::size_t>& split = {});
-  // F per cell (N/m^3), averaged over the accumulated steps; resets the sums. Also returns the
-  // total drag on the particles over those steps (N, averaged) for the third-law check.
+  // The fluid force on the particles (eqs 8-12, and -V grad p for model A) is linear in the
+  // particle's velocity once its drag coefficient is fixed: f = beta (u_gas - v) + f_base.
+  // At every gas step (and at the start) freeze_drag() takes, for every particle, its cell, the
+  // gas velocity there, beta from the current slip, and f_base = -V grad p; it sets the force of
+  // the next step, Particles::ext_fx/ext_fy. Between gas steps advance_drag() renews only the
+  // slip, from the particle's current velocity. The gas needs porosity and F only when it
+  // steps, so the drag law (logarithms and exponentials) is evaluated once per gas step, and
+  // Newton's third law stays exact: the gas receives the mean of exactly the drags the
+  // particles felt, each summed into the cell frozen with it. With one particle step per gas
+  // step this is the paper's scheme: the drag from the gas and particle velocity at the end of
+  // each step, held over the next.
+  // `split`: each thread's particles (DemSolver::split(), so each particle's data stays on the
+  // core that stepped it); empty: even blocks. Results are the same bits for any thread count.
+  void freeze_drag(Particles& p, const std::vector<std::size_t>& split = {});
+  // After every particle step: adds the drag of the step just taken to each particle's sum, then
+  // (when `update`, i.e. no gas step follows) the force of the next step from the frozen
+  // coefficients.
+  void advance_drag(Particles& p, bool update, const std::vector<std::size_t>& split = {});
+
+  // F per cell (N/m^3): each particle's summed drag in its frozen cell, averaged over the steps
+  // since the last call; resets the sums. Also returns the total drag on the particles over
+  // those steps (N, averaged) for the third-law check.
   void take_interaction_force(std::vector<double>& fx, std::vector<double>& fy, double& total_x,
-                              double& total_y);
+                              double& total_y, const std::vector<std::size_t>& split = {});
 
   void save(CouplingState& out) const;
   // Throws InputError when the sizes do not fit this grid and particle count.
   void restore(const CouplingState& in, std::size_t particles);
 
+  // N, per particle: the drag of the next step (the last one set).
   const std::vector<double>& drag_x() const { return drag_x_; }
   const std::vector<double>& drag_y() const { return drag_y_; }
 
@@ -79,14 +95,20 @@ class Coupler {
   template <class F>
   void sum_blocks(int t, std::size_t b, std::size_t e, F&& add_particle);
 
+  void freeze_range(Particles& p, std::size_t begin, std::size_t end);
+
   BlockCellSums sums_;  // per-cell sums over particles, block by block
   std::vector<double> cell_ux_, cell_uy_, cell_gx_, cell_gy_, ln_eps_;  // per cell
   std::vector<double> solid_, eps_;
-  std::vector<double> drag_x_, drag_y_;  // N, per particle, from the last compute_fluid_forces
-  std::vector<int> cell_;                // cell of each particle's centre at that time
-  // Scratch per particle for compute_fluid_forces: slip (m/s), the cell's eps and ln eps, beta.
-  std::vector<double> slip_x_, slip_y_, slip_, eps_at_, ln_eps_at_, beta_;
-  std::vector<double> sum_fx_, sum_fy_;  // N, per cell, summed over steps
+  // Per particle, frozen at the last gas step: the cell of its centre, the gas velocity there
+  // (m/s), the drag coefficient (kg/s) and the force that does not depend on the slip (N).
+  std::vector<int> cell_;
+  std::vector<double> gas_ux_, gas_uy_, beta_, base_fx_, base_fy_;
+  std::vector<double> drag_x_, drag_y_;  // N, per particle: the drag of the next step
+  std::vector<double> sum_x_, sum_y_;    // N, per particle: drags felt since the last gas step
+  // Scratch per particle for freeze_drag: slip (m/s), the cell's eps and ln eps.
+  std::vector<double> slip_x_, slip_y_, slip_, eps_at_, ln_eps_at_;
+  std::vector<double> cell_sum_x_, cell_sum_y_;  // N, per cell (take_interaction_force)
   int accumulated_ = 0;
 };
 

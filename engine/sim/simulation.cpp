@@ -51,7 +51,7 @@ Simulation::Simulation(const Settings& s)
   coupler_->refresh_cells(*gas_);
   gas_speed_ = gas_->max_speed_per_cell();
   note_inlet_speed();
-  coupler_->compute_fluid_forces(p);
+  coupler_->freeze_drag(p);
   // A fresh start has no carried acceleration beyond gravity: add the gas's share to it.
   if (s.particles.placement != "state" && s.particles.placement != "packed") {
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -75,25 +75,29 @@ void Simulation::step() {
   PhaseClock clock(dem_.phase_times());
   Particles& p = dem_.particles();
   const auto& split = dem_.split();  // each particle's forces where its data is
-  coupler_->accumulate_drag(p, split);  // the drag the particles felt in this step
   // The gas every particle_steps_per_gas_step steps, or sooner while the gas is fast: a gas
   // step that would start above kGasCflTarget (the jet opening its cavity, a velocity raised
   // in the viewer) is taken now. With the paper's one step per gas step this never acts.
   ++since_gas_step_;
   const bool fast = gas_speed_ * (since_gas_step_ + 1) * settings_.time.dt > kGasCflTarget;
-  if (since_gas_step_ >= settings_.coupling.particle_steps_per_gas_step || fast) {
+  const bool gas_now = since_gas_step_ >= settings_.coupling.particle_steps_per_gas_step || fast;
+  // The drag the particles felt in this step joins the gas's sums; the next step's force comes
+  // from the frozen coefficients, or, after a gas step, from new ones.
+  coupler_->advance_drag(p, !gas_now, split);
+  if (gas_now) {
     gas_step(clock);
+    coupler_->freeze_drag(p, split);
   }
-  coupler_->compute_fluid_forces(p, split);  // for the next step
   clock.lap(Phase::Coupling);
 }
 
 void Simulation::gas_step(PhaseClock& clock) {
   const double dt = since_gas_step_ * settings_.time.dt;
   since_gas_step_ = 0;
-  const auto& eps = coupler_->compute_porosity(dem_.particles(), time(), dem_.split());
+  const auto& split = dem_.split();
+  const auto& eps = coupler_->compute_porosity(dem_.particles(), time(), split);
   CouplingDiagnostics& d = coupling_diag_;
-  coupler_->take_interaction_force(fx_, fy_, d.drag_total_x, d.drag_total_y);
+  coupler_->take_interaction_force(fx_, fy_, d.drag_total_x, d.drag_total_y, split);
   clock.lap(Phase::Coupling);
   d.gas = gas_->step(dt, eps, fx_, fy_);
   clock.lap(Phase::Gas);

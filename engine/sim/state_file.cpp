@@ -8,7 +8,10 @@
 
 namespace fluidbed {
 namespace {
-constexpr char kGasTag[8] = {'F', 'L', 'B', 'G', 'A', 'S', '0', '2'};
+// 03: the coupler keeps each particle's frozen drag coefficient and its summed drag (02 kept
+// per-cell sums; a file of that form cannot continue bit for bit and is refused by name).
+constexpr char kGasTag[8] = {'F', 'L', 'B', 'G', 'A', 'S', '0', '3'};
+constexpr char kOldGasTag[8] = {'F', 'L', 'B', 'G', 'A', 'S', '0', '2'};
 }  // namespace
 
 void save_simulation_state(const std::string& path, const StateFile& f) {
@@ -25,8 +28,11 @@ void save_simulation_state(const std::string& path, const StateFile& f) {
     put(out, g.time);
     put(out, g.steps);
     const CouplingState& c = f.coupling;
-    for (const auto* v : {&c.eps, &c.drag_x, &c.drag_y, &c.sum_fx, &c.sum_fy}) put_vec(out, *v);
+    put_vec(out, c.eps);
     put_vec(out, c.cell);
+    for (const auto* v : {&c.beta, &c.gas_ux, &c.gas_uy, &c.base_fx, &c.base_fy, &c.drag_x,
+                          &c.drag_y, &c.sum_x, &c.sum_y})
+      put_vec(out, *v);
     put(out, c.accumulated);
     put(out, f.since_gas_step);
   });
@@ -40,6 +46,10 @@ StateFile load_simulation_state(const std::string& path) {
   char tag[sizeof kGasTag];
   in.read(tag, sizeof tag);
   if (in.gcount() == 0) return f;  // particles only
+  if (in && std::memcmp(tag, kOldGasTag, sizeof tag) == 0)
+    throw InputError(path + ": the gas block was saved by an older fluidbed (format 02) and "
+                            "cannot be continued; its particles still start a new run "
+                            "(particles.placement = \"state\")");
   if (!in || std::memcmp(tag, kGasTag, sizeof tag) != 0)
     throw InputError(path + ": state file has an unknown block after the particles");
   f.has_gas = true;
@@ -53,8 +63,11 @@ StateFile load_simulation_state(const std::string& path) {
   g.time = src.get<double>();
   g.steps = src.get<std::int64_t>();
   CouplingState& c = f.coupling;
-  for (auto* v : {&c.eps, &c.drag_x, &c.drag_y, &c.sum_fx, &c.sum_fy}) src.get_vec(*v);
+  src.get_vec(c.eps);
   src.get_vec(c.cell);
+  for (auto* v : {&c.beta, &c.gas_ux, &c.gas_uy, &c.base_fx, &c.base_fy, &c.drag_x, &c.drag_y,
+                  &c.sum_x, &c.sum_y})
+    src.get_vec(*v);
   c.accumulated = src.get<int>();
   f.since_gas_step = src.get<int>();
   return f;
