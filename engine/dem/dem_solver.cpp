@@ -73,6 +73,10 @@ void DemSolver::fail(const std::string& what) const {
 }
 
 // Pass 1 over candidate pairs [k0, k1): each pair's force from its history, written to its slot.
+// In two sweeps, so that neither branches on whether a pair touches (about half of the
+// candidates do, in no order a predictor could learn): the first finds the touching pairs and
+// clears the others' slots; the second computes the contact forces of the touching ones only.
+// The arithmetic is that of the contact law, in the same order.
 template <bool Incremental>
 void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPartial& acc) {
   const Particles& P = state_.particles;
@@ -92,22 +96,40 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
   double* lfy = L.fy.data();
   double* lft = L.ft.data();
   double* lratio = L.ratio.data();
-  const ContactParams params = params_;
-  int contacts = 0, sliding = 0;
+  // The touching pairs of this range: their slots, negated (~k) for those that touch for the
+  // first time (scratch: each thread writes its own range of it).
+  std::int32_t* on = L.active.data() + k0;
+  std::int64_t count = 0;
   double max_ratio = 0.0;
   for (std::int64_t k = k0; k < k1; ++k) {
     const int i = li[k], j = lj[k];
     const double px = x[j] - x[i], py = y[j] - y[i];
     const double R = r[i] + r[j];
     const double L2 = px * px + py * py;
-    if (L2 >= R * R || L2 <= 0.0) {  // apart (coincident centres are caught as an overlap)
-      touch[k] = 0;
-      ldn[k] = lds[k] = 0.0;
-      lfx[k] = lfy[k] = lft[k] = 0.0;
-      lratio[k] = L2 <= 0.0 ? 1.0 : 0.0;
-      max_ratio = std::max(max_ratio, lratio[k]);
-      continue;
-    }
+    // Apart, or coincident centres (caught as an overlap of 1): not a contact. Bitwise
+    // operators and integer arithmetic throughout, so that the compiler emits no branch.
+    const int coincident = L2 <= 0.0;
+    const int touching = (L2 < R * R) & (coincident ^ 1);
+    const int fresh = touching & (touch[k] ^ 1);  // touching for the first time: the slot negated
+    on[count] = static_cast<std::int32_t>(k) ^ -fresh;
+    count += touching;
+    touch[k] = static_cast<std::uint8_t>(touching);
+    // The history of a slot that is not touching is never read (the next contact of the pair
+    // starts from zero, below), so only the forces and the ratio are cleared here.
+    lfx[k] = lfy[k] = lft[k] = 0.0;
+    const double ratio = static_cast<double>(coincident);
+    lratio[k] = ratio;
+    max_ratio = std::max(max_ratio, ratio);
+  }
+  const ContactParams params = params_;
+  int sliding = 0;
+  for (std::int64_t q = 0; q < count; ++q) {
+    const bool fresh = on[q] < 0;
+    const std::int64_t k = fresh ? ~on[q] : on[q];
+    const int i = li[k], j = lj[k];
+    const double px = x[j] - x[i], py = y[j] - y[i];
+    const double R = r[i] + r[j];
+    const double L2 = px * px + py * py;
     const double Lc = std::sqrt(L2);
     const double nx = px / Lc, ny = py / Lc;
     const double tx = -ny, ty = nx;
@@ -115,7 +137,7 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
     const double vn = vrx * nx + vry * ny;
     const double vt = vrx * tx + vry * ty + w[i] * r[i] + w[j] * r[j];
     double dn = ldn[k], ds = lds[k], tau = dtau;
-    if (!touch[k]) {
+    if (fresh) {  // rare: the branch is well predicted
       dn = ds = 0.0;
       if (Incremental) tau = std::min(time_since_touch(px, py, -vrx, -vry, R, Lc), dtau);  // eq 13
     }
@@ -126,18 +148,17 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
     }
     ds += vt * tau;  // eqs 15, 17
     const ContactForce f = contact_force(params, dn, ds, vn, vt);
-    touch[k] = 1;
     ldn[k] = dn;
     lds[k] = ds;
     lfx[k] = f.fn * nx + f.ft * tx;
     lfy[k] = f.fn * ny + f.ft * ty;
     lft[k] = f.ft;
-    lratio[k] = 1.0 - Lc / R;
-    max_ratio = std::max(max_ratio, lratio[k]);
-    ++contacts;
+    const double ratio = 1.0 - Lc / R;
+    lratio[k] = ratio;
+    max_ratio = std::max(max_ratio, ratio);
     sliding += f.sliding;
   }
-  acc.contacts += contacts;
+  acc.contacts += static_cast<int>(count);
   acc.sliding += sliding;
   acc.max_ratio = std::max(acc.max_ratio, max_ratio);
 }

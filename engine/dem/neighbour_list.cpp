@@ -115,6 +115,7 @@ void NeighbourList::build(const Particles& p, const PairContacts* seed) {
   fy.resize(m);
   ft.resize(m);
   ratio.resize(m);
+  active.resize(m);
 
   // Gather lists: entries are sorted by i, so each particle's "first" entries are contiguous;
   // its "second" entries come from a stable counting sort by j.

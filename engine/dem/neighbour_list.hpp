@@ -42,6 +42,7 @@ class NeighbourList {
   std::vector<std::uint8_t> touching;   // touching at the last evaluation
   std::vector<double> fx, fy, ft;       // N: force on i (x, y) and its tangential component
   std::vector<double> ratio;            // overlap ratio (0 while not touching)
+  std::vector<std::int32_t> active;     // scratch of the force pass: the touching slots
   // Gather lists: entries [first_begin[p], first_begin[p + 1]) have i == p; the entries with
   // j == p are second_pair[second_begin[p] .. second_begin[p + 1]), in ascending order.
   std::vector<std::int32_t> first_begin, second_begin, second_pair;
