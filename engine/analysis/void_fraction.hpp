@@ -1,0 +1,78 @@
+#pragma once
+// The void fraction on a fine grid (model.md 6): eps = 1 - (solid volume in a cell) / (cell
+// area x slab thickness), with cells of about half a particle diameter, fine enough to see a
+// bubble's shape, independent of the gas grid (10 x 20 mm cells in the paper's bed).
+//
+// Each sphere's volume is shared exactly among the cells it covers. A sphere of 4 mm on cells of
+// 2 mm spans 2 or 3 columns and rows (4 when the cell is smaller than a radius): its share in a
+// cell is the volume between two vertical and two horizontal lines, which inclusion-exclusion
+// writes with Q(a, b), the volume of the part x > a, y > b (coupling/porosity.hpp's
+// sphere_quadrant_volume; sphere_cap_volume where one line is absent):
+//   V(cell) = Q(x0, y0) - Q(x1, y0) - Q(x0, y1) + Q(x1, y1).
+// Q is needed once per grid-line crossing inside the sphere's span (up to 4 on 2 mm cells).
+//
+// Exact rather than a smooth kernel: measured on the development machine (bench_bubbles.cpp,
+// 2400 spheres of a packed lattice), the exact shares cost about 200 ns per sphere against
+// about 60 ns for the cheapest kernel (the product of the exact cap marginals in x and y): 0.5 ms
+// against 0.15 ms per frame, both far inside the budget of a frame (a few ms: one frame per 10 ms
+// of simulated time, which takes 50-150 ms of wall time). Exact shares sum to the sphere's volume
+// in every cell configuration, give the packed bed its true void fraction (0.395 for a
+// hexagonal layer) and put a bubble's edge where the spheres are, not where a kernel smears
+// them; the threshold of 0.8 then means what model.md says.
+//
+// A sphere's parts beyond a wall (a small overlap) stay in the edge cell, as in porosity.hpp, so
+// the shares always sum to the sphere's volume; a centre outside the domain (a particle thrown
+// above the top) counts in the nearest edge cells. Sums run in particle order (deterministic).
+// Thick slabs (model.md 7) are handled as well: the share of a sphere lying wholly inside the
+// slab does not depend on its z.
+#include <vector>
+
+#include "dem/particles.hpp"
+
+namespace fluidbed {
+
+// The fine grid over the domain (width x height, left wall at x = 0, bottom at y = 0): nx
+// columns and ny rows of equal cells, nx = round(width / cell_size) (at least 1) so that the
+// cells cover the width exactly; likewise in y. Cells are then square to within a few per cent.
+struct FineGrid {
+  int nx = 0, ny = 0;
+  double dx = 0.0, dy = 0.0;  // m, cell size
+  double thickness = 0.0;     // m, slab depth (z)
+
+  int cells() const { return nx * ny; }
+  int index(int i, int j) const { return i + nx * j; }  // row-major, j = 0 at the bottom
+  double x_centre(int i) const { return (i + 0.5) * dx; }  // m
+  double y_centre(int j) const { return (j + 0.5) * dy; }  // m
+  double cell_area() const { return dx * dy; }             // m^2
+  double width() const { return nx * dx; }                 // m
+  double height() const { return ny * dy; }                // m
+};
+
+// Throws InputError naming `bubbles.cell_size` unless 0 < cell_size <= min(width, height) and
+// cell_size >= particle_diameter / 8 (finer grids than that cost more than they show: a sphere
+// would span 9 x 9 cells or more).
+FineGrid make_fine_grid(double width, double height, double thickness, double cell_size,
+                        double particle_diameter);
+
+// The field: eps per cell of `grid` (row-major, FineGrid::index). top_row is one past the highest
+// row any sphere reaches: rows from top_row up hold no solid (eps = 1), which the bubble detector
+// uses to skip the empty freeboard.
+struct VoidFractionField {
+  FineGrid grid;
+  std::vector<double> eps;  // -, grid.cells() entries
+  int top_row = 0;
+
+  double at(int i, int j) const { return eps[grid.index(i, j)]; }
+};
+
+// Adds the exact shares of one sphere (centre (x, y), radius R) to solid (m^3 per cell,
+// grid.cells() entries). No allocation.
+void add_sphere_to_fine_grid(const FineGrid& grid, double x, double y, double R,
+                             std::vector<double>& solid);
+
+// eps of every cell from the particles' positions and radii. field.grid must be set; eps is
+// resized on the first call and reused after. No clamping: a cell over-filled by overlapping
+// spheres shows eps a little below the packing limit, never a bubble.
+void compute_void_fraction(const Particles& p, VoidFractionField& field);
+
+}  // namespace fluidbed
