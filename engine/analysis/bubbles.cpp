@@ -18,14 +18,15 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-[[noreturn]] void bad_setting(const char* key, const std::string& why, double v,
-                              const char* unit) {
+[[noreturn]] void bad_setting(const char* key, const std::string& why, double v, const char* unit) {
   std::ostringstream os;
   os << "bubbles." << key << " " << why << " (got " << v << unit << ")";
   throw InputError(os.str());
 }
 
-double equivalent_diameter(double area) { return std::sqrt(4.0 * area / std::numbers::pi); }
+double equivalent_diameter(double area) {
+  return std::sqrt(4.0 * area / std::numbers::pi);
+}
 
 }  // namespace
 
@@ -34,8 +35,7 @@ double equivalent_diameter(double area) { return std::sqrt(4.0 * area / std::num
 
 std::vector<JetSlot> jet_slots(double domain_width, int jets, double jet_width) {
   std::vector<JetSlot> slots;
-  for (int k = 0; k < jets; ++k)
-    slots.push_back({(k + 0.5) * domain_width / jets, jet_width});
+  for (int k = 0; k < jets; ++k) slots.push_back({(k + 0.5) * domain_width / jets, jet_width});
   return slots;
 }
 
@@ -66,22 +66,32 @@ void validate(const BubbleSettings& s, const BedGeometry& g) {
 
 const char* to_string(BubbleEvent e) {
   switch (e) {
-    case BubbleEvent::none: return "";
-    case BubbleEvent::formed: return "formed";
-    case BubbleEvent::coalesced: return "coalesced";
-    case BubbleEvent::split: return "split";
-    case BubbleEvent::erupted: return "erupted";
-    case BubbleEvent::vanished: return "vanished";
+    case BubbleEvent::none:
+      return "";
+    case BubbleEvent::formed:
+      return "formed";
+    case BubbleEvent::coalesced:
+      return "coalesced";
+    case BubbleEvent::split:
+      return "split";
+    case BubbleEvent::erupted:
+      return "erupted";
+    case BubbleEvent::vanished:
+      return "vanished";
   }
   return "";
 }
 
 const char* to_string(Regime r) {
   switch (r) {
-    case Regime::fixed: return "fixed";
-    case Regime::bubbling: return "bubbling";
-    case Regime::slugging: return "slugging";
-    case Regime::spouting: return "spouting";
+    case Regime::fixed:
+      return "fixed";
+    case Regime::bubbling:
+      return "bubbling";
+    case Regime::slugging:
+      return "slugging";
+    case Regime::spouting:
+      return "spouting";
   }
   return "";
 }
@@ -112,23 +122,32 @@ void BubbleDetector::detect(const VoidFractionField& field, BubbleFrame& frame) 
 
   comp_.assign(cells, -1);
   regions_.clear();
-  stack_.clear();
+  const int active = rows * nx;
+  void_.resize(cells);
+  for (int c = 0; c < active; ++c)
+    void_[static_cast<std::size_t>(c)] = eps[static_cast<std::size_t>(c)] > thr;
   // Connected regions of one kind (void with 4 neighbours, dense with 8), numbered in the order
   // of their first cell in row-major order (deterministic).
-  const auto fill = [&](int seed, bool void_kind) {
+  const auto fill = [&](int i0, int j0, bool void_kind) {
     const int k = static_cast<int>(regions_.size());
+    const std::uint8_t kind = void_kind ? 1 : 0;
     Region r;
     r.void_cells = void_kind;
     r.i_min = nx;
     r.j_min = ny;
     r.i_max = -1;
     r.j_max = -1;
-    comp_[static_cast<std::size_t>(seed)] = k;
-    stack_.push_back(seed);
-    while (!stack_.empty()) {
-      const int c = stack_.back();
-      stack_.pop_back();
-      const int i = c % nx, j = c / nx;
+    const auto visit = [&](int i, int j) {
+      const auto n = static_cast<std::size_t>(i + nx * j);
+      if (comp_[n] >= 0 || void_[n] != kind) return;
+      comp_[n] = k;
+      cell_stack_.push_back({i, j});
+    };
+    comp_[static_cast<std::size_t>(i0 + nx * j0)] = k;
+    cell_stack_.push_back({i0, j0});
+    while (!cell_stack_.empty()) {
+      const auto [i, j] = cell_stack_.back();
+      cell_stack_.pop_back();
       ++r.cells;
       r.sum_i += i;
       r.sum_j += j;
@@ -139,27 +158,25 @@ void BubbleDetector::detect(const VoidFractionField& field, BubbleFrame& frame) 
       if (j == rows - 1) r.touches_top = true;
       if (i == 0 || i == nx - 1) r.touches_wall = true;
       if (j == 0 && jet_column_[static_cast<std::size_t>(i)]) r.touches_jet = true;
-      for (int dj = -1; dj <= 1; ++dj) {
-        const int jj = j + dj;
-        if (jj < 0 || jj >= rows) continue;
-        for (int di = -1; di <= 1; ++di) {
-          if (di == 0 && dj == 0) continue;
-          if (void_kind && di != 0 && dj != 0) continue;  // void: edge neighbours only
-          const int ii = i + di;
-          if (ii < 0 || ii >= nx) continue;
-          const int n = ii + nx * jj;
-          const auto un = static_cast<std::size_t>(n);
-          if (comp_[un] >= 0 || (eps[un] > thr) != void_kind) continue;
-          comp_[un] = k;
-          stack_.push_back(n);
-        }
+      const bool left = i > 0, right = i + 1 < nx, down = j > 0, up = j + 1 < rows;
+      if (left) visit(i - 1, j);
+      if (right) visit(i + 1, j);
+      if (down) visit(i, j - 1);
+      if (up) visit(i, j + 1);
+      if (!void_kind) {  // dense: the diagonal neighbours too
+        if (left && down) visit(i - 1, j - 1);
+        if (right && down) visit(i + 1, j - 1);
+        if (left && up) visit(i - 1, j + 1);
+        if (right && up) visit(i + 1, j + 1);
       }
     }
     regions_.push_back(r);
   };
-  const int active = rows * nx;
-  for (int c = 0; c < active; ++c)
-    if (comp_[static_cast<std::size_t>(c)] < 0) fill(c, eps[static_cast<std::size_t>(c)] > thr);
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const auto c = static_cast<std::size_t>(i + nx * j);
+      if (comp_[c] < 0) fill(i, j, void_[c] != 0);
+    }
 
   // The bed: the dense regions holding at least bed_min_fraction of the dense cells. Its surface
   // per column: the top of its highest cell there.
@@ -168,12 +185,13 @@ void BubbleDetector::detect(const VoidFractionField& field, BubbleFrame& frame) 
     if (!r.void_cells) dense_cells += r.cells;
   const double bed_min = s_.bed_min_fraction * static_cast<double>(dense_cells);
   frame.surface.assign(static_cast<std::size_t>(nx), 0.0);
-  for (int c = 0; c < active; ++c) {
-    const Region& r = regions_[static_cast<std::size_t>(comp_[static_cast<std::size_t>(c)])];
-    if (r.void_cells || static_cast<double>(r.cells) < bed_min) continue;
-    double& top = frame.surface[static_cast<std::size_t>(c % nx)];
-    top = std::max(top, (c / nx + 1) * G.dy);
-  }
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const Region& r =
+          regions_[static_cast<std::size_t>(comp_[static_cast<std::size_t>(i + nx * j)])];
+      if (!r.void_cells && static_cast<double>(r.cells) >= bed_min)
+        frame.surface[static_cast<std::size_t>(i)] = (j + 1) * G.dy;
+    }
 
   // Classify the void regions; the label of a void region: its index among frame.regions, or
   // kCellFreeboard / kCellSmallVoid.
@@ -181,21 +199,21 @@ void BubbleDetector::detect(const VoidFractionField& field, BubbleFrame& frame) 
   frame.spout = false;
   std::vector<int>& label = frame.label;
   label.assign(cells, kCellFreeboard);  // the rows above `rows` stay freeboard
-  // The void-region indices are mapped to labels in place of a second array: class_of[k].
-  stack_.assign(regions_.size(), kCellDense);
+  // class_of_[k]: the label of component k.
+  class_of_.assign(regions_.size(), kCellDense);
   const double cell_area = G.cell_area();
   for (std::size_t k = 0; k < regions_.size(); ++k) {
     const Region& r = regions_[k];
     if (!r.void_cells) continue;
     if (r.touches_top) {
-      stack_[k] = kCellFreeboard;
+      class_of_[k] = kCellFreeboard;
       if (r.touches_jet) frame.spout = true;
       continue;
     }
     const double area = r.cells * cell_area;
     const double d_eq = equivalent_diameter(area);
     if (d_eq < s_.min_diameter) {
-      stack_[k] = kCellSmallVoid;
+      class_of_[k] = kCellSmallVoid;
       continue;
     }
     Bubble b;
@@ -205,7 +223,7 @@ void BubbleDetector::detect(const VoidFractionField& field, BubbleFrame& frame) 
     if (!r.touches_jet) {
       const int ic = std::clamp(static_cast<int>(b.x / G.dx), 0, nx - 1);
       if (b.y > frame.surface[static_cast<std::size_t>(ic)]) {  // a pocket above the bed
-        stack_[k] = kCellFreeboard;
+        class_of_[k] = kCellFreeboard;
         continue;
       }
     }
@@ -221,14 +239,14 @@ void BubbleDetector::detect(const VoidFractionField& field, BubbleFrame& frame) 
     b.touches_wall = r.touches_wall;
     b.touches_jet = r.touches_jet;
     b.slug = !r.touches_jet && b.width > s_.slug_fraction * g_.width;
-    stack_[k] = static_cast<int>(frame.regions.size());
+    class_of_[k] = static_cast<int>(frame.regions.size());
     frame.regions.push_back(b);
   }
   for (int c = 0; c < active; ++c) {
     const auto uc = static_cast<std::size_t>(c);
-    label[uc] = stack_[static_cast<std::size_t>(comp_[uc])];
+    label[uc] = class_of_[static_cast<std::size_t>(comp_[uc])];
   }
-  stack_.clear();
+  class_of_.clear();
   for (std::size_t k = 0; k < frame.regions.size(); ++k)
     weighted_centroid(field, label, static_cast<int>(k), frame.regions[k]);
 }
@@ -240,8 +258,8 @@ void BubbleDetector::detect(const VoidFractionField& field, BubbleFrame& frame) 
 // frame on 2 mm cells). The weight is continuous across the threshold and vanishes in the packed
 // bed around the region (eps about 0.4, below floor = 0.5), so this centroid moves continuously
 // with the particles: the same test errs by at most 3.3 % (rms 1.2 %).
-void BubbleDetector::weighted_centroid(const VoidFractionField& field, const std::vector<int>& label,
-                                       int k, Bubble& b) const {
+void BubbleDetector::weighted_centroid(const VoidFractionField& field,
+                                       const std::vector<int>& label, int k, Bubble& b) const {
   const FineGrid& G = field.grid;
   const double floor = std::max(0.0, std::min(kCentroidVoidFloor, s_.threshold - 0.1));
   const auto at = [&](int i, int j) { return label[static_cast<std::size_t>(G.index(i, j))]; };
@@ -443,8 +461,8 @@ void put_bubble(std::ostream& out, const Bubble& b) {
 Bubble get_bubble(BinarySource& in) {
   Bubble b;
   b.id = in.get<int>();
-  for (double* v : {&b.x, &b.y, &b.area, &b.d_eq, &b.width, &b.height, &b.aspect_ratio, &b.vx,
-                    &b.vy})
+  for (double* v :
+       {&b.x, &b.y, &b.area, &b.d_eq, &b.width, &b.height, &b.aspect_ratio, &b.vx, &b.vy})
     *v = in.get<double>();
   for (int* v : {&b.cells, &b.i_min, &b.i_max, &b.j_min, &b.j_max}) *v = in.get<int>();
   for (bool* v : {&b.touches_wall, &b.touches_jet, &b.slug, &b.has_velocity, &b.from_jet})
@@ -508,9 +526,14 @@ FrameSummary summarize_frame(const BubbleFrame& frame, double dt, double gravity
         ++f.formed;
         if (b.from_jet) ++f.formed_at_jet;
         break;
-      case BubbleEvent::coalesced: ++f.coalesced; break;
-      case BubbleEvent::split: ++f.split; break;
-      default: break;
+      case BubbleEvent::coalesced:
+        ++f.coalesced;
+        break;
+      case BubbleEvent::split:
+        ++f.split;
+        break;
+      default:
+        break;
     }
     if (b.has_velocity) {
       ++f.velocities;
@@ -649,8 +672,8 @@ void write_bubbles_csv_rows(std::ostream& out, const std::vector<BubbleRow>& row
   // printf formatting: the same text under any stream state or locale of the caller.
   char buf[320];
   for (const BubbleRow& r : rows) {
-    int n = std::snprintf(buf, sizeof buf, "%.9g,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,", r.t, r.id,
-                          r.x, r.y, r.d_eq, r.area, r.width, r.height);
+    int n = std::snprintf(buf, sizeof buf, "%.9g,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,", r.t, r.id, r.x,
+                          r.y, r.d_eq, r.area, r.width, r.height);
     out.write(buf, n);
     if (r.has_velocity) {
       n = std::snprintf(buf, sizeof buf, "%.9g,%.9g,", r.vx, r.vy);
@@ -675,8 +698,8 @@ const BubbleSettings& checked(const BubbleSettings& s, const BedGeometry& g) {
 BubbleAnalysis::BubbleAnalysis(const BubbleSettings& s, const BedGeometry& g)
     : s_(checked(s, g)),
       g_(g),
-      field_{make_fine_grid(g.width, g.height, g.thickness, s.cell_size, g.particle_diameter),
-             {}, 0},
+      field_{
+          make_fine_grid(g.width, g.height, g.thickness, s.cell_size, g.particle_diameter), {}, 0},
       detector_(s_, g_),
       tracker_(s_, field_.grid) {}
 
@@ -709,8 +732,8 @@ void BubbleAnalysis::save(std::ostream& out) const {
   put(out, static_cast<std::uint64_t>(history_.size()));
   for (const FrameSummary& f : history_) {
     for (double v : {f.t, f.dt, f.sum_d_eq, f.sum_vx, f.sum_vy, f.sum_ub_ref}) put(out, v);
-    for (int v : {f.bubbles, f.formed, f.formed_at_jet, f.coalesced, f.split, f.erupted,
-                  f.vanished, f.velocities})
+    for (int v : {f.bubbles, f.formed, f.formed_at_jet, f.coalesced, f.split, f.erupted, f.vanished,
+                  f.velocities})
       put(out, v);
     for (bool v : {f.slug, f.spout, f.jet_cavity}) put(out, static_cast<std::uint8_t>(v));
   }

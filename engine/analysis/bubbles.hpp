@@ -52,6 +52,7 @@
 //   fixed     - no bubble was formed and no slug seen in the window (the bed does not bubble:
 //               below minimum fluidization a stable jet cavity may stand, but nothing detaches);
 //   bubbling  - otherwise.
+#include <array>
 #include <cstdint>
 #include <istream>
 #include <ostream>
@@ -77,11 +78,11 @@ std::vector<JetSlot> jet_slots(double domain_width, int jets, double jet_width);
 
 // What the analysis needs to know of the bed.
 struct BedGeometry {
-  double width = 0.15;             // m, domain x extent (left wall at x = 0)
-  double height = 0.9;             // m, domain y extent (bottom at y = 0)
-  double thickness = 0.004;        // m, slab depth
+  double width = 0.15;               // m, domain x extent (left wall at x = 0)
+  double height = 0.9;               // m, domain y extent (bottom at y = 0)
+  double thickness = 0.004;          // m, slab depth
   double particle_diameter = 0.004;  // m, the largest
-  double gravity = 9.81;           // m/s^2, for the 2D rise-velocity reference 0.5 sqrt(g D_e)
+  double gravity = 9.81;             // m/s^2, for the 2D rise-velocity reference 0.5 sqrt(g D_e)
   std::vector<JetSlot> jets = {JetSlot{}};  // the paper's central 10 mm slot
 };
 
@@ -111,24 +112,24 @@ enum class BubbleEvent : std::uint8_t { none, formed, coalesced, split, erupted,
 // "", "formed", "coalesced", "split", "erupted", "vanished": the `event` column of bubbles.csv.
 const char* to_string(BubbleEvent e);
 
-// One bubble (or jet cavity) in one frame. Trivially copyable (checkpoints write it as bytes).
+// One bubble (or jet cavity) in one frame (plain data; checkpoints write it field by field).
 struct Bubble {
-  int id = -1;                 // tracking id (unique over the run; -1 before tracking)
-  double x = 0.0, y = 0.0;     // m, centroid (of the excess void: kCentroidVoidFloor)
-  double area = 0.0;           // m^2
-  double d_eq = 0.0;           // m, sqrt(4 area / pi)
-  double width = 0.0;          // m, x extent of its cells
-  double height = 0.0;         // m, y extent
-  double aspect_ratio = 0.0;   // -, height / width
-  double vx = 0.0, vy = 0.0;   // m/s, centroid velocity (when has_velocity)
-  int cells = 0;               // fine cells
-  int i_min = 0, i_max = 0;    // fine columns spanned
-  int j_min = 0, j_max = 0;    // fine rows spanned
-  bool touches_wall = false;   // a cell in the first or last column
-  bool touches_jet = false;    // the jet cavity: a cell in the bottom row over a jet slot
-  bool slug = false;           // width > slug_fraction x bed width (never for the jet cavity)
-  bool has_velocity = false;   // vx, vy measured (a clean one-to-one match)
-  bool from_jet = false;       // event formed: detached from the jet cavity (not appeared)
+  int id = -1;                // tracking id (unique over the run; -1 before tracking)
+  double x = 0.0, y = 0.0;    // m, centroid (of the excess void: kCentroidVoidFloor)
+  double area = 0.0;          // m^2
+  double d_eq = 0.0;          // m, sqrt(4 area / pi)
+  double width = 0.0;         // m, x extent of its cells
+  double height = 0.0;        // m, y extent
+  double aspect_ratio = 0.0;  // -, height / width
+  double vx = 0.0, vy = 0.0;  // m/s, centroid velocity (when has_velocity)
+  int cells = 0;              // fine cells
+  int i_min = 0, i_max = 0;   // fine columns spanned
+  int j_min = 0, j_max = 0;   // fine rows spanned
+  bool touches_wall = false;  // a cell in the first or last column
+  bool touches_jet = false;   // the jet cavity: a cell in the bottom row over a jet slot
+  bool slug = false;          // width > slug_fraction x bed width (never for the jet cavity)
+  bool has_velocity = false;  // vx, vy measured (a clean one-to-one match)
+  bool from_jet = false;      // event formed: detached from the jet cavity (not appeared)
   BubbleEvent event = BubbleEvent::none;
 };
 
@@ -144,12 +145,12 @@ constexpr double kCentroidVoidFloor = 0.5;
 
 // One analysed frame.
 struct BubbleFrame {
-  double t = 0.0;                // s
-  std::vector<Bubble> regions;   // bubbles and jet cavities (touches_jet), by first cell
-  std::vector<Bubble> ended;     // bubbles that ended here (event erupted or vanished)
-  std::vector<int> label;        // per fine cell (FineGrid::index): see kCell*
-  std::vector<double> surface;   // m, bed surface per fine column (0: no bed there)
-  bool spout = false;            // the jet cavity reaches the freeboard
+  double t = 0.0;               // s
+  std::vector<Bubble> regions;  // bubbles and jet cavities (touches_jet), by first cell
+  std::vector<Bubble> ended;    // bubbles that ended here (event erupted or vanished)
+  std::vector<int> label;       // per fine cell (FineGrid::index): see kCell*
+  std::vector<double> surface;  // m, bed surface per fine column (0: no bed there)
+  bool spout = false;           // the jet cavity reaches the freeboard
 };
 
 // Connected regions, bed surface and jet cavity of one void-fraction field. Holds its scratch
@@ -175,8 +176,10 @@ class BubbleDetector {
 
   BubbleSettings s_;
   BedGeometry g_;
-  std::vector<int> comp_;    // component per cell
-  std::vector<int> stack_;   // flood fill
+  std::vector<int> comp_;                       // component per cell
+  std::vector<int> class_of_;                   // region class per component
+  std::vector<std::array<int, 2>> cell_stack_;  // flood fill: (i, j)
+  std::vector<std::uint8_t> void_;              // 1 for eps > threshold
   std::vector<Region> regions_;
   std::vector<std::uint8_t> jet_column_;  // 1 for a fine column over a jet slot
 };
@@ -204,17 +207,17 @@ class BubbleTracker {
 
 // What one frame adds to the statistics (small: kept for every frame of a run).
 struct FrameSummary {
-  double t = 0.0;             // s
-  double dt = 0.0;            // s since the previous frame (0 for the first)
-  int bubbles = 0;            // not counting the jet cavity
+  double t = 0.0;   // s
+  double dt = 0.0;  // s since the previous frame (0 for the first)
+  int bubbles = 0;  // not counting the jet cavity
   int formed = 0, formed_at_jet = 0, coalesced = 0, split = 0, erupted = 0, vanished = 0;
-  int velocities = 0;         // bubbles with a measured velocity
-  bool slug = false;          // a slug present
-  bool spout = false;         // the jet cavity reaches the freeboard
-  bool jet_cavity = false;    // a jet cavity present
-  double sum_d_eq = 0.0;      // m, over the bubbles
+  int velocities = 0;                 // bubbles with a measured velocity
+  bool slug = false;                  // a slug present
+  bool spout = false;                 // the jet cavity reaches the freeboard
+  bool jet_cavity = false;            // a jet cavity present
+  double sum_d_eq = 0.0;              // m, over the bubbles
   double sum_vx = 0.0, sum_vy = 0.0;  // m/s, over the bubbles with a velocity
-  double sum_ub_ref = 0.0;    // m/s, 0.5 sqrt(g D_e) over the bubbles with a velocity
+  double sum_ub_ref = 0.0;            // m/s, 0.5 sqrt(g D_e) over the bubbles with a velocity
 };
 
 FrameSummary summarize_frame(const BubbleFrame& frame, double dt, double gravity);
@@ -228,23 +231,23 @@ struct BubbleStatistics {
   double duration = 0.0;      // s, covered by the window's frames
   int frames = 0;
   int formed = 0, formed_at_jet = 0, coalesced = 0, split = 0, erupted = 0, vanished = 0;
-  double formed_per_s = 0.0;          // 1/s, bubbles formed (detached from the jet or appeared)
-  double formed_at_jet_per_s = 0.0;   // 1/s
-  double eruptions_per_s = 0.0;       // 1/s
-  double coalescences_per_s = 0.0;    // 1/s
-  double splits_per_s = 0.0;          // 1/s
-  double mean_bubbles = 0.0;          // bubbles per frame
-  int bubble_frames = 0;              // bubbles summed over the frames
-  int velocity_samples = 0;           // of those, with a velocity
-  double mean_d_eq_m = 0.0;           // m, over bubble-frames (NaN when there are none)
+  double formed_per_s = 0.0;            // 1/s, bubbles formed (detached from the jet or appeared)
+  double formed_at_jet_per_s = 0.0;     // 1/s
+  double eruptions_per_s = 0.0;         // 1/s
+  double coalescences_per_s = 0.0;      // 1/s
+  double splits_per_s = 0.0;            // 1/s
+  double mean_bubbles = 0.0;            // bubbles per frame
+  int bubble_frames = 0;                // bubbles summed over the frames
+  int velocity_samples = 0;             // of those, with a velocity
+  double mean_d_eq_m = 0.0;             // m, over bubble-frames (NaN when there are none)
   double mean_rise_velocity_m_s = 0.0;  // m/s, mean vy over bubble-frames with a velocity (NaN)
-  double mean_vx_m_s = 0.0;           // m/s (NaN)
+  double mean_vx_m_s = 0.0;             // m/s (NaN)
   // The two-dimensional reference u_b = 0.5 sqrt(g D_e) (Pyle and Harrison 1967) averaged over
   // the same bubble-frames: a reference, not a fit (NaN).
   double mean_rise_velocity_2d_ref_m_s = 0.0;
-  double slugging_fraction = 0.0;     // -, frames with a slug
-  double spouting_fraction = 0.0;     // -, frames with the jet cavity open to the freeboard
-  double jet_cavity_fraction = 0.0;   // -, frames with a jet cavity
+  double slugging_fraction = 0.0;    // -, frames with a slug
+  double spouting_fraction = 0.0;    // -, frames with the jet cavity open to the freeboard
+  double jet_cavity_fraction = 0.0;  // -, frames with a jet cavity
   Regime regime = Regime::fixed;
 };
 
@@ -261,7 +264,7 @@ nlohmann::json to_json(const BubbleStatistics& st);
 // One row of bubbles.csv: one per bubble per frame (jet cavities excluded), and one per bubble
 // that ended in the frame (erupted or vanished: its last geometry and velocity).
 struct BubbleRow {
-  double t = 0.0;                    // s
+  double t = 0.0;  // s
   int id = -1;
   double x = 0.0, y = 0.0;           // m
   double d_eq = 0.0;                 // m

@@ -13,9 +13,8 @@ namespace fluidbed {
 std::vector<std::uint8_t> kinds_by_initial_height(const std::vector<double>& y) {
   std::vector<std::size_t> order(y.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return y[a] < y[b] || (y[a] == y[b] && a < b);
-  });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return y[a] < y[b] || (y[a] == y[b] && a < b); });
   std::vector<std::uint8_t> kind(y.size(), 1);
   for (std::size_t k = 0; k < y.size() / 2; ++k) kind[order[k]] = 0;
   return kind;

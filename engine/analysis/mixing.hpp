@@ -33,15 +33,15 @@ struct LaceySettings {
 std::vector<std::uint8_t> kinds_by_initial_height(const std::vector<double>& y);
 
 struct LaceyResult {
-  bool ok = false;            // false: no cell counted or only one kind present
-  double index = 0.0;         // M, -
-  double p = 0.0;             // fraction of kind 1 over the counted particles
-  double s2 = 0.0;            // variance of the kind-1 fraction over the cells
-  double s0_2 = 0.0;          // p (1 - p)
-  double sr_2 = 0.0;          // p (1 - p) / n
-  double mean_per_cell = 0.0; // n
-  int cells = 0;              // counted
-  int particles = 0;          // in counted cells
+  bool ok = false;             // false: no cell counted or only one kind present
+  double index = 0.0;          // M, -
+  double p = 0.0;              // fraction of kind 1 over the counted particles
+  double s2 = 0.0;             // variance of the kind-1 fraction over the cells
+  double s0_2 = 0.0;           // p (1 - p)
+  double sr_2 = 0.0;           // p (1 - p) / n
+  double mean_per_cell = 0.0;  // n
+  int cells = 0;               // counted
+  int particles = 0;           // in counted cells
 };
 
 // kind has one entry per particle (0 or 1). Throws InputError naming `mixing.cell_size` or

@@ -82,8 +82,8 @@ PowerSpectrum welch_spectrum(const std::vector<double>& series, double h, const 
   std::vector<double> w(m);
   double w2 = 0.0;
   for (std::size_t k = 0; k < m; ++k) {
-    w[k] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(k) /
-                                static_cast<double>(m));
+    w[k] = 0.5 -
+           0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(m));
     w2 += w[k] * w[k];
   }
   const std::size_t bins = nfft / 2 + 1;
@@ -141,8 +141,7 @@ nlohmann::json to_json(const PowerSpectrum& p) {
   const auto peak = [&](double f) { return f > 0.0 ? nlohmann::json(f) : nlohmann::json(nullptr); };
   j["dominant_frequency_hz"] = peak(p.dominant_frequency);
   j["dominant_frequency_refined_hz"] = peak(p.dominant_frequency_refined);
-  j["resolution_hz"] =
-      p.segment_samples > 0 ? 1.0 / (p.segment_samples * p.sample_interval) : 0.0;
+  j["resolution_hz"] = p.segment_samples > 0 ? 1.0 / (p.segment_samples * p.sample_interval) : 0.0;
   j["bin_hz"] = p.df;
   j["segments"] = p.segments;
   j["segment_s"] = p.segment_samples * p.sample_interval;

@@ -22,23 +22,23 @@
 namespace fluidbed {
 
 struct WelchSettings {
-  double segment = 4.0;              // s, segment length ("a few seconds")
-  double overlap = 0.5;              // -, share of a segment overlapping the next; [0, 1)
-  double min_peak_frequency = 0.5;   // Hz, the dominant frequency is sought above this
+  double segment = 4.0;             // s, segment length ("a few seconds")
+  double overlap = 0.5;             // -, share of a segment overlapping the next; [0, 1)
+  double min_peak_frequency = 0.5;  // Hz, the dominant frequency is sought above this
 };
 
 struct PowerSpectrum {
-  bool ok = false;                 // false: fewer than 8 samples
-  double sample_interval = 0.0;    // s
-  int segment_samples = 0;         // samples per segment (before padding)
-  int fft_size = 0;                // padded length (a power of two)
-  int segments = 0;                // averaged
-  double df = 0.0;                 // Hz, bin spacing: 1 / (fft_size x sample_interval)
-  std::vector<double> frequency;   // Hz, 0 .. Nyquist
-  std::vector<double> psd;         // unit^2/Hz, one-sided
-  double dominant_frequency = 0.0;      // Hz, the peak bin's frequency (0: no peak)
+  bool ok = false;                          // false: fewer than 8 samples
+  double sample_interval = 0.0;             // s
+  int segment_samples = 0;                  // samples per segment (before padding)
+  int fft_size = 0;                         // padded length (a power of two)
+  int segments = 0;                         // averaged
+  double df = 0.0;                          // Hz, bin spacing: 1 / (fft_size x sample_interval)
+  std::vector<double> frequency;            // Hz, 0 .. Nyquist
+  std::vector<double> psd;                  // unit^2/Hz, one-sided
+  double dominant_frequency = 0.0;          // Hz, the peak bin's frequency (0: no peak)
   double dominant_frequency_refined = 0.0;  // Hz, parabola through the peak (0: no peak)
-  double dominant_psd = 0.0;            // unit^2/Hz at the peak bin
+  double dominant_psd = 0.0;                // unit^2/Hz at the peak bin
 };
 
 // Throws InputError naming `spectrum.segment` / `spectrum.overlap` /

@@ -39,9 +39,9 @@ using fluidbed::testing::Hole;
 
 namespace {
 
-constexpr double kD = 0.004;        // m, particle diameter
-constexpr double kWidth = 0.15;     // m
-constexpr double kTop = 0.2;        // m, highest centre of the synthetic bed
+constexpr double kD = 0.004;                    // m, particle diameter
+constexpr double kWidth = 0.15;                 // m
+constexpr double kTop = 0.2;                    // m, highest centre of the synthetic bed
 const double kRow = std::sqrt(3.0) / 2.0 * kD;  // m, row spacing of the hexagonal layer
 
 // D_e of the void left by one hole (see the top of this file).
@@ -57,8 +57,7 @@ const Bubble* find_id(const BubbleFrame& f, int id) {
   return nullptr;
 }
 
-BubbleFrame one_frame(const Particles& p, const BubbleSettings& s = {},
-                      const BedGeometry& g = {}) {
+BubbleFrame one_frame(const Particles& p, const BubbleSettings& s = {}, const BedGeometry& g = {}) {
   BubbleAnalysis a(s, g);
   return a.analyse(0.01, p);
 }
@@ -236,8 +235,8 @@ TEST(BubbleTracking, HoleMovedIsTrackedWithItsVelocity) {
   }
   BubbleAnalysis b({}, {});
   for (int k = 0; k < 4; ++k) {
-    const BubbleFrame& f =
-        b.analyse(0.01 * (k + 1), hex_bed(kWidth, kTop, {{x0 + 0.5 * kD * k, y0 + kRow * k, 0.012}}));
+    const BubbleFrame& f = b.analyse(
+        0.01 * (k + 1), hex_bed(kWidth, kTop, {{x0 + 0.5 * kD * k, y0 + kRow * k, 0.012}}));
     ASSERT_EQ(f.regions.size(), 1u);
     if (k == 0) continue;
     ASSERT_TRUE(f.regions[0].has_velocity);

@@ -27,7 +27,9 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kR = 0.002;  // m, the paper's particle radius
 const double kVs = 4.0 / 3.0 * kPi * kR * kR * kR;
 
-FineGrid paper_grid() { return make_fine_grid(0.15, 0.9, 0.004, 0.002, 0.004); }
+FineGrid paper_grid() {
+  return make_fine_grid(0.15, 0.9, 0.004, 0.002, 0.004);
+}
 
 // The volume of the sphere (centre (x, y), radius R) above the rectangle [x0, x1] x [y0, y1]:
 // the integral of its depth 2 sqrt(R^2 - rho^2) by the midpoint rule on n x n points. The depth
@@ -66,8 +68,8 @@ TEST(VoidFraction, GridCoversTheDomainWithCellsOfHalfADiameter) {
 TEST(VoidFraction, SharesMatchQuadratureOfTheSphere) {
   const FineGrid g = paper_grid();
   // Centres: inside a cell's middle (3 x 3 cells), on a grid line, near a corner of four cells.
-  const double centres[][2] = {{0.051, 0.101}, {0.0500, 0.1013}, {0.0503, 0.1007},
-                               {0.0517, 0.0994}};
+  const double centres[][2] = {
+      {0.051, 0.101}, {0.0500, 0.1013}, {0.0503, 0.1007}, {0.0517, 0.0994}};
   for (const auto& c : centres) {
     std::vector<double> solid(static_cast<std::size_t>(g.cells()), 0.0);
     add_sphere_to_fine_grid(g, c[0], c[1], kR, solid);
@@ -132,7 +134,8 @@ TEST(VoidFraction, PackedHexagonalLayerSitsAtItsPackingLimit) {
   // The total solid is every sphere's volume (no share lost).
   double solid = 0.0;
   for (double e : f.eps) solid += (1.0 - e) * f.grid.cell_area() * f.grid.thickness;
-  EXPECT_NEAR(solid, static_cast<double>(p.size()) * kVs, 1e-9 * static_cast<double>(p.size()) * kVs);
+  EXPECT_NEAR(solid, static_cast<double>(p.size()) * kVs,
+              1e-9 * static_cast<double>(p.size()) * kVs);
   // Above the bed: nothing; top_row is one past the highest row a sphere reaches.
   const double top = *std::max_element(p.y.begin(), p.y.end()) + kR;
   EXPECT_EQ(f.top_row, static_cast<int>(top / f.grid.dy) + 1);
