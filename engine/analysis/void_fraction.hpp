@@ -11,14 +11,16 @@
 //   V(cell) = Q(x0, y0) - Q(x1, y0) - Q(x0, y1) + Q(x1, y1).
 // Q is needed once per grid-line crossing inside the sphere's span (up to 4 on 2 mm cells).
 //
-// Exact rather than a smooth kernel: measured on the development machine (bench_bubbles.cpp,
-// 2400 spheres of a packed lattice), the exact shares cost about 200 ns per sphere against
-// about 60 ns for the cheapest kernel (the product of the exact cap marginals in x and y): 0.5 ms
-// against 0.15 ms per frame, both far inside the budget of a frame (a few ms: one frame per 10 ms
-// of simulated time, which takes 50-150 ms of wall time). Exact shares sum to the sphere's volume
-// in every cell configuration, give the packed bed its true void fraction (0.395 for a
-// hexagonal layer) and put a bubble's edge where the spheres are, not where a kernel smears
-// them; the threshold of 0.8 then means what model.md says.
+// Exact rather than a smooth kernel: measured with bench_bubbles.cpp (2400 spheres of a packed
+// layer with holes, the development machine's 2 shared cores), the exact shares cost about
+// 200-290 ns of CPU per sphere (0.5-0.7 ms per frame; three atan2 per quadrant volume), against
+// 75-80 ns (0.19 ms) for the cheapest smooth kernel, the product of the sphere's exact x and y
+// marginals (cap differences only). Both are far inside a frame's budget: one frame per 10 ms of
+// simulated time, which takes 50-150 ms of wall time, so 5 % is 2.5-7.5 ms. The kernel, though,
+// misplaces up to 3.8 % of a sphere's volume between cells, 0.08 in a cell's eps: as much as
+// the margin between a bubble's boundary cells and the threshold. Exact shares give the packed
+// layer its true eps (0.395 for a hexagonal one) and put a bubble's edge where the spheres are,
+// so the threshold of 0.8 means what model.md says.
 //
 // A sphere's parts beyond a wall (a small overlap) stay in the edge cell, as in porosity.hpp, so
 // the shares always sum to the sphere's volume; a centre outside the domain (a particle thrown
@@ -40,7 +42,7 @@ struct FineGrid {
   double thickness = 0.0;     // m, slab depth (z)
 
   int cells() const { return nx * ny; }
-  int index(int i, int j) const { return i + nx * j; }  // row-major, j = 0 at the bottom
+  int index(int i, int j) const { return i + nx * j; }     // row-major, j = 0 at the bottom
   double x_centre(int i) const { return (i + 0.5) * dx; }  // m
   double y_centre(int j) const { return (j + 0.5) * dy; }  // m
   double cell_area() const { return dx * dy; }             // m^2
