@@ -2,10 +2,11 @@
 // per 10 ms of simulated time, i.e. a budget of a few ms per frame) on 2400 spheres of the
 // paper's size: a packed hexagonal layer across the paper's bed with three holes (a jet cavity
 // and two bubbles), 0.26 m deep.
-//   BubbleVoidFraction        - the exact fine-grid void fraction (the library's choice);
+//   BubbleVoidFraction        - the exact fine-grid void fraction (the library's choice), with
+//                               its 10 mm window average;
 //   BubbleVoidFractionKernel  - for the cost comparison only: a smooth kernel, each sphere's
 //                               volume spread as the product of its exact x and y marginals
-//                               (cap differences; no quadrant volumes);
+//                               (cap differences; no quadrant volumes; no window);
 //   BubbleDetect              - connected regions, bed surface, jet cavity, centroids;
 //   BubbleFrame               - one whole frame: void fraction, detection, tracking, summary
 //                               (the hole positions alternate so that tracking has work).
@@ -67,7 +68,8 @@ void per_particle(benchmark::State& state, std::size_t n) {
 
 void BM_BubbleVoidFraction(benchmark::State& state) {
   const Particles p = bed_with_holes();
-  VoidFractionField f{make_fine_grid(0.15, 0.9, 0.004, 0.5 * kD, kD), {}, 0};
+  VoidFractionField f =
+      make_void_fraction_field(make_fine_grid(0.15, 0.9, 0.004, 0.5 * kD, kD), 2.5 * kD);
   for (auto _ : state) {
     compute_void_fraction(p, f);
     benchmark::DoNotOptimize(f.eps.data());
@@ -122,7 +124,8 @@ void BM_BubbleDetect(benchmark::State& state) {
   const Particles p = bed_with_holes();
   const BubbleSettings s;
   const BedGeometry g;
-  VoidFractionField f{make_fine_grid(g.width, g.height, g.thickness, s.cell_size, kD), {}, 0};
+  VoidFractionField f = make_void_fraction_field(
+      make_fine_grid(g.width, g.height, g.thickness, s.cell_size, kD), s.window);
   compute_void_fraction(p, f);
   BubbleDetector detector(s, g);
   BubbleFrame frame;

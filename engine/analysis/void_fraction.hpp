@@ -13,14 +13,14 @@
 //
 // Exact rather than a smooth kernel: measured with bench_bubbles.cpp (2400 spheres of a packed
 // layer with holes, the development machine's 2 shared cores), the exact shares cost about
-// 200-290 ns of CPU per sphere (0.5-0.7 ms per frame; three atan2 per quadrant volume), against
-// 75-80 ns (0.19 ms) for the cheapest smooth kernel, the product of the sphere's exact x and y
-// marginals (cap differences only). Both are far inside a frame's budget: one frame per 10 ms of
-// simulated time, which takes 50-150 ms of wall time, so 5 % is 2.5-7.5 ms. The kernel, though,
-// misplaces up to 3.8 % of a sphere's volume between cells, 0.08 in a cell's eps: as much as
-// the margin between a bubble's boundary cells and the threshold. Exact shares give the packed
-// layer its true eps (0.395 for a hexagonal one) and put a bubble's edge where the spheres are,
-// so the threshold of 0.8 means what model.md says.
+// 190-290 ns of CPU per sphere (0.45-0.7 ms per frame with the window average below; three
+// atan2 per quadrant volume), against 55-80 ns for the cheapest smooth kernel, the product of the
+// sphere's exact x and y marginals (cap differences only). Both are far inside a frame's budget:
+// one frame per 10 ms of simulated time, which takes 50-150 ms of wall time, so 5 % is 2.5-7.5
+// ms. The kernel, though, misplaces up to 3.8 % of a sphere's volume between cells, 0.08 in a
+// cell's eps: as much as the margin between a bubble's boundary cells and the threshold. Exact
+// shares give the packed layer its true eps (0.395 for a hexagonal one) and put a bubble's edge
+// where the spheres are, so the threshold of 0.8 means what model.md says.
 //
 // A sphere's parts beyond a wall (a small overlap) stay in the edge cell, as in porosity.hpp, so
 // the shares always sum to the sphere's volume; a centre outside the domain (a particle thrown
@@ -56,24 +56,42 @@ struct FineGrid {
 FineGrid make_fine_grid(double width, double height, double thickness, double cell_size,
                         double particle_diameter);
 
-// The field: eps per cell of `grid` (row-major, FineGrid::index). top_row is one past the highest
-// row any sphere reaches: rows from top_row up hold no solid (eps = 1), which the bubble detector
-// uses to skip the empty freeboard.
+// The field, two ways, both exact (eq 22 with the sphere shares above):
+//   eps        - per fine cell;
+//   eps_window - over a square sample window of (2 half_window + 1) cells a side centred on each
+//                fine cell (clipped at the domain's walls: the part of the window inside). With
+//                cells of half a diameter, eps alone resolves single spheres: a dilute region
+//                of eps 0.85 (a bubble with particles raining through it) reads as a sieve of
+//                dense cells, one per sphere, and its "bubble" breaks into fragments. The window
+//                (2.5 d by default: 10 mm, 5 cells, the gas grid's width) averages over a few
+//                spheres while keeping the fine grid's 2 mm steps for the boundary: one sphere in
+//                a window of 10 x 10 mm leaves eps = 0.92, two 0.83, three 0.75. The window
+//                average of the exact cell shares is the exact volume in the window.
+// Rows from top_row up hold no solid (eps = 1): the bubble detector skips the empty freeboard.
 struct VoidFractionField {
   FineGrid grid;
-  std::vector<double> eps;  // -, grid.cells() entries
-  int top_row = 0;
+  int half_window_x = 0, half_window_y = 0;  // cells on either side of the window's centre
+  std::vector<double> eps;                   // -, grid.cells() entries (FineGrid::index)
+  std::vector<double> eps_window;            // -, grid.cells() entries
+  int top_row = 0;                           // one past the highest row a sphere reaches
+  std::vector<double> scratch;               // working space of compute_void_fraction
 
   double at(int i, int j) const { return eps[grid.index(i, j)]; }
+  double window_at(int i, int j) const { return eps_window[grid.index(i, j)]; }
 };
+
+// A field on `grid` with a sample window of side `window` (m), rounded to an odd number of
+// cells in each direction (window <= one cell: no averaging). Throws InputError naming
+// `bubbles.window` unless 0 <= window <= min(width, height).
+VoidFractionField make_void_fraction_field(const FineGrid& grid, double window);
 
 // Adds the exact shares of one sphere (centre (x, y), radius R) to solid (m^3 per cell,
 // grid.cells() entries). No allocation.
 void add_sphere_to_fine_grid(const FineGrid& grid, double x, double y, double R,
                              std::vector<double>& solid);
 
-// eps of every cell from the particles' positions and radii. field.grid must be set; eps is
-// resized on the first call and reused after. No clamping: a cell over-filled by overlapping
+// eps and eps_window of every cell from the particles' positions and radii (the arrays are
+// sized on the first call and reused after). No clamping: a cell over-filled by overlapping
 // spheres shows eps a little below the packing limit, never a bubble.
 void compute_void_fraction(const Particles& p, VoidFractionField& field);
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -19,6 +20,7 @@ using fluidbed::compute_void_fraction;
 using fluidbed::FineGrid;
 using fluidbed::InputError;
 using fluidbed::make_fine_grid;
+using fluidbed::make_void_fraction_field;
 using fluidbed::VoidFractionField;
 
 namespace {
@@ -119,7 +121,7 @@ TEST(VoidFraction, PackedHexagonalLayerSitsAtItsPackingLimit) {
   // eps = 1 - 0.9069 x 2/3 = 0.3954 (model.md 6). Averaged over a window 40 mm wide, 40 mm high,
   // away from walls and the surface, the mean is that to within the window's edge (about one
   // row of cells out of 20: 0.01).
-  VoidFractionField f{paper_grid(), {}, 0};
+  VoidFractionField f = make_void_fraction_field(paper_grid(), 0.01);
   const auto p = fluidbed::testing::hex_bed(0.15, 0.2);
   compute_void_fraction(p, f);
   double sum = 0.0;
@@ -140,6 +142,63 @@ TEST(VoidFraction, PackedHexagonalLayerSitsAtItsPackingLimit) {
   const double top = *std::max_element(p.y.begin(), p.y.end()) + kR;
   EXPECT_EQ(f.top_row, static_cast<int>(top / f.grid.dy) + 1);
   for (int i = 0; i < f.grid.nx; ++i) EXPECT_EQ(f.at(i, f.top_row), 1.0);
+}
+
+TEST(VoidFraction, WindowAverageIsTheExactVolumeFractionOfTheWindow) {
+  // The window (10 mm, 5 cells) is the exact solid volume of the spheres in a 10 x 10 mm square
+  // around each cell's centre, clipped at the walls: checked against the quadrature of each
+  // sphere's depth over that square, for a few spheres near a wall and the bottom.
+  VoidFractionField f = make_void_fraction_field(paper_grid(), 0.01);
+  EXPECT_EQ(f.half_window_x, 2);
+  EXPECT_EQ(f.half_window_y, 2);
+  EXPECT_EQ(make_void_fraction_field(paper_grid(), 0.006).half_window_x, 1);
+  EXPECT_EQ(make_void_fraction_field(paper_grid(), 0.0).half_window_x, 0);
+  const auto p = fluidbed::testing::hex_bed(0.012, 0.01);  // a corner of a bed: 9 spheres
+  fluidbed::Particles q;
+  q.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    q.x[i] = p.x[i];
+    q.y[i] = p.y[i];
+    q.set_sphere(i, 0.004, 2700.0);
+  }
+  compute_void_fraction(q, f);
+  for (const auto& ij : {std::array<int, 2>{0, 0}, {1, 2}, {3, 3}, {6, 1}, {4, 7}}) {
+    const int i = ij[0], j = ij[1];
+    const double x0 = std::max(0.0, (i - 2) * 0.002), x1 = (i + 3) * 0.002;
+    const double y0 = std::max(0.0, (j - 2) * 0.002), y1 = (j + 3) * 0.002;
+    double solid = 0.0;
+    for (std::size_t k = 0; k < q.size(); ++k)
+      solid += quadrature_share(q.x[k], q.y[k], kR, x0, x1, y0, y1, 400);
+    EXPECT_NEAR(f.window_at(i, j), 1.0 - solid / ((x1 - x0) * (y1 - y0) * 0.004), 2e-4)
+        << "cell " << i << "," << j;
+  }
+  // The packed layer through the window: its mean, with a spread far below the single cells'
+  // (which see the gaps between spheres).
+  VoidFractionField g = make_void_fraction_field(paper_grid(), 0.01);
+  compute_void_fraction(fluidbed::testing::hex_bed(0.15, 0.2), g);
+  double sum = 0.0, sum2 = 0.0, cell_sum2 = 0.0;
+  int n = 0;
+  for (int j = 30; j < 50; ++j)
+    for (int i = 20; i < 40; ++i) {
+      sum += g.window_at(i, j);
+      sum2 += g.window_at(i, j) * g.window_at(i, j);
+      cell_sum2 += g.at(i, j) * g.at(i, j);
+      ++n;
+    }
+  const double mean = sum / n;
+  const double packing = 1.0 - kPi / (2.0 * std::sqrt(3.0)) * 2.0 / 3.0;
+  EXPECT_NEAR(mean, packing, 0.01);
+  const double window_spread = std::sqrt(sum2 / n - mean * mean);
+  const double cell_spread = std::sqrt(cell_sum2 / n - mean * mean);
+  EXPECT_LT(window_spread, 0.2 * cell_spread);  // 0.006 against 0.047
+  // Rows well above the bed: 1.
+  EXPECT_EQ(g.window_at(10, g.top_row + 2), 1.0);
+  try {
+    make_void_fraction_field(paper_grid(), -0.01);
+    ADD_FAILURE() << "no error for a negative window";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("bubbles.window ", 0), 0u) << e.what();
+  }
 }
 
 TEST(VoidFraction, BadCellSizeIsAnInputErrorNamingTheKey) {
