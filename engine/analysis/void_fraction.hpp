@@ -11,16 +11,17 @@
 //   V(cell) = Q(x0, y0) - Q(x1, y0) - Q(x0, y1) + Q(x1, y1).
 // Q is needed once per grid-line crossing inside the sphere's span (up to 4 on 2 mm cells).
 //
-// Exact rather than a smooth kernel: measured with bench_bubbles.cpp (2400 spheres of a packed
-// layer with holes, the development machine's 2 shared cores), the exact shares cost about
-// 190-290 ns of CPU per sphere (0.45-0.7 ms per frame with the window average below; three
-// atan2 per quadrant volume), against 55-80 ns for the cheapest smooth kernel, the product of the
-// sphere's exact x and y marginals (cap differences only). Both are far inside a frame's budget:
-// one frame per 10 ms of simulated time, which takes 50-150 ms of wall time, so 5 % is 2.5-7.5
-// ms. The kernel, though, misplaces up to 3.8 % of a sphere's volume between cells, 0.08 in a
-// cell's eps: as much as the margin between a bubble's boundary cells and the threshold. Exact
-// shares give the packed layer its true eps (0.395 for a hexagonal one) and put a bubble's edge
-// where the spheres are, so the threshold of 0.8 means what model.md says.
+// Exact rather than a smooth kernel: measured with bench_bubbles.cpp (2400 spheres at random
+// places relative to the cells, the development machine's 2 cores shared with other work), the
+// exact shares and the window average cost about 350 ns of CPU per sphere, 0.85 ms per frame
+// (on frames of the paper's bed at 2.8 m/s: 1.3 ms; about three quadrant volumes per sphere,
+// whose three atan2 are 40 % of the time), against 60 ns (0.14 ms) for the cheapest smooth
+// kernel, the product of the sphere's exact x and y marginals (cap differences only). Both fit
+// a frame's budget: one frame per 10 ms of simulated time, which takes 50-150 ms of wall time,
+// so 5 % is 2.5-7.5 ms. The kernel, though, misplaces up to 3.8 % of a sphere's volume between
+// cells, 0.08 in a cell's eps: as much as the margin between a bubble's boundary cells and the
+// threshold. Exact shares give the packed layer its true eps (0.395 for a hexagonal one) and
+// put a bubble's edge where the spheres are, so the threshold of 0.8 means what model.md says.
 //
 // A sphere's parts beyond a wall (a small overlap) stay in the edge cell, as in porosity.hpp, so
 // the shares always sum to the sphere's volume; a centre outside the domain (a particle thrown
