@@ -340,7 +340,9 @@ class BubbleAnalysis {
   void append_rows(std::vector<BubbleRow>& rows) const { fluidbed::append_rows(frame_, rows); }
   // Over the frames after averaging_start (to the last frame).
   BubbleStatistics statistics(double averaging_start) const;
-  // The regime of the frames in (t_from, t_to]: a timeseries column over a trailing window.
+  // The regime of the frames in (t_from, t_to]: a timeseries column over a trailing window (an
+  // id younger than min_track_frames at the call counts as flicker). Cost: the window's samples
+  // (found by bisection), so call it once per frame, not per timeseries row.
   Regime regime(double t_from, double t_to) const;
 
   // Checkpoints: the tracker and the history (the void fraction and the frame are rebuilt by
