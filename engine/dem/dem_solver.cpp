@@ -1,7 +1,9 @@
 #include "dem/dem_solver.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 
@@ -37,6 +39,7 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   list_.configure(width_, height_, dmax, d.skin * dmax, n);
   state_.particles = std::move(particles);
   overlap_.assign(n, 0.0);
+  wall_active_.assign(n, 0);
   state_.walls.resize(n, static_cast<int>(walls_.size()));
   // Newmark and Verlet carry the last acceleration; at rest with no contacts it is gravity.
   auto& p = state_.particles;
@@ -163,8 +166,21 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
   acc.max_ratio = std::max(acc.max_ratio, max_ratio);
 }
 
-// Pass 2 over particles [b, e): gravity, gas, the pair forces gathered in a fixed order (entries
-// where the particle is second, then first), and the walls.
+namespace {
+
+// v where keep, else +0.0, by masking the bits (no branch; a multiply would give -0.0 or NaN).
+inline double keep_or_zero(double v, bool keep) {
+  const std::uint64_t mask = 0 - static_cast<std::uint64_t>(keep);
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) & mask);
+}
+
+}  // namespace
+
+// Pass 2 over particles [b, e): gravity, gas and the pair forces gathered in a fixed order
+// (entries where the particle is second, then first: one list), then each wall in turn. The
+// walls go as the pairs do: one sweep finds the particles touching the wall (branch-free) and
+// clears the history of those that do not, the next computes the contacts. Each particle's
+// force is summed in the order: gathered pairs, then walls 0, 1, 2, (3).
 template <bool Incremental>
 void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPartial& acc) {
   Particles& P = state_.particles;
@@ -179,54 +195,64 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
   const double* lfy = L.fy.data();
   const double* lft = L.ft.data();
   const double* lratio = L.ratio.data();
-  const std::int32_t* fb = L.first_begin.data();
-  const std::int32_t* sb = L.second_begin.data();
-  const std::int32_t* sp = L.second_pair.data();
-  WallHistory& wh = state_.walls;
-  const int nw = static_cast<int>(walls_.size());
-  const Wall* walls = walls_.data();
+  const std::int32_t* gb = L.gather_begin.data();
+  const std::int32_t* gl = L.gather.data();
   double* fx = P.fx.data();
   double* fy = P.fy.data();
   double* tq = P.torque.data();
   double* ov = overlap_.data();
-  const ContactParams params = params_;
   const double g = gravity_;
-  double max_wall_ratio = 0.0;
-  int wall_contacts = 0, sliding = 0;
   for (std::size_t i = b; i < e; ++i) {
     double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
-    for (std::int32_t q = sb[i]; q < sb[i + 1]; ++q) {
-      const std::int32_t k = sp[q];
-      fxi -= lfx[k];
-      fyi -= lfy[k];
+    for (std::int32_t q = gb[i]; q < gb[i + 1]; ++q) {
+      const std::int32_t c = gl[q];
+      const std::int32_t k = c ^ (c >> 31);              // ~c for the entries stored negated
+      const double sign = static_cast<double>(1 | (c >> 31));  // -1 there: x + (-1) f is x - f
+      fxi += sign * lfx[k];
+      fyi += sign * lfy[k];
       tqi += r[i] * lft[k];
       ovi = std::max(ovi, lratio[k]);
     }
-    for (std::int32_t k = fb[i]; k < fb[i + 1]; ++k) {
-      fxi += lfx[k];
-      fyi += lfy[k];
-      tqi += r[i] * lft[k];
-      ovi = std::max(ovi, lratio[k]);
-    }
-    for (int c = 0; c < nw; ++c) {
-      const Wall& wall = walls[c];
+    fx[i] = fxi;
+    fy[i] = fyi;
+    tq[i] = tqi;
+    ov[i] = ovi;
+  }
+  WallHistory& wh = state_.walls;
+  const int nw = static_cast<int>(walls_.size());
+  const ContactParams params = params_;
+  std::int32_t* on = wall_active_.data() + b;
+  double max_wall_ratio = 0.0;
+  int wall_contacts = 0, sliding = 0;
+  for (int c = 0; c < nw; ++c) {
+    const Wall& wall = walls_[static_cast<std::size_t>(c)];
+    std::uint8_t* active = wh.active.data();
+    double* hdn = wh.dn.data();
+    double* hds = wh.ds.data();
+    std::size_t count = 0;
+    for (std::size_t i = b; i < e; ++i) {
       const std::size_t s = i * nw + c;
       const double d = wall.nx * x[i] + wall.ny * y[i] - wall.offset;
-      if (d >= r[i]) {
-        if (wh.active[s]) {
-          wh.active[s] = 0;
-          wh.dn[s] = 0.0;
-          wh.ds[s] = 0.0;
-        }
-        continue;
-      }
+      const bool touching = d < r[i];
+      const int fresh = touching & (active[s] ^ 1);
+      on[count] = static_cast<std::int32_t>(i) ^ -fresh;  // ~i: touching for the first time
+      count += touching;
+      active[s] = static_cast<std::uint8_t>(touching);
+      hdn[s] = keep_or_zero(hdn[s], touching);  // apart: the history is cleared
+      hds[s] = keep_or_zero(hds[s], touching);
+    }
+    const double nx = -wall.nx, ny = -wall.ny;  // from the particle into the wall
+    const double tx = -ny, ty = nx;
+    for (std::size_t q = 0; q < count; ++q) {
+      const bool fresh = on[q] < 0;
+      const std::size_t i = static_cast<std::size_t>(fresh ? ~on[q] : on[q]);
+      const std::size_t s = i * nw + c;
+      const double d = wall.nx * x[i] + wall.ny * y[i] - wall.offset;
       const double overlap = r[i] - d;
-      const double nx = -wall.nx, ny = -wall.ny;  // from the particle into the wall
-      const double tx = -ny, ty = nx;
       const double vn = vx[i] * nx + vy[i] * ny;
       const double vt = vx[i] * tx + vy[i] * ty + w[i] * r[i];
-      double dn = wh.dn[s], ds = wh.ds[s], tau = dtau;
-      if (!wh.active[s] && Incremental) tau = std::min(time_since_touch_wall(overlap, vn), dtau);
+      double dn = hdn[s], ds = hds[s], tau = dtau;
+      if (fresh && Incremental) tau = std::min(time_since_touch_wall(overlap, vn), dtau);
       if constexpr (Incremental) {
         dn += vn * tau;
       } else {
@@ -234,21 +260,16 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
       }
       ds += vt * tau;
       const ContactForce f = contact_force(params, dn, ds, vn, vt);
-      wh.active[s] = 1;
-      wh.dn[s] = dn;
-      wh.ds[s] = ds;
-      fxi += f.fn * nx + f.ft * tx;
-      fyi += f.fn * ny + f.ft * ty;
-      tqi += r[i] * f.ft;
-      ++wall_contacts;
+      hdn[s] = dn;
+      hds[s] = ds;
+      fx[i] += f.fn * nx + f.ft * tx;
+      fy[i] += f.fn * ny + f.ft * ty;
+      tq[i] += r[i] * f.ft;
       sliding += f.sliding;
       max_wall_ratio = std::max(max_wall_ratio, overlap / r[i]);
-      ovi = std::max(ovi, 0.5 * overlap / r[i]);
+      ov[i] = std::max(ov[i], 0.5 * overlap / r[i]);
     }
-    fx[i] = fxi;
-    fy[i] = fyi;
-    tq[i] = tqi;
-    ov[i] = ovi;
+    wall_contacts += static_cast<int>(count);
   }
   acc.wall_contacts += wall_contacts;
   acc.sliding += sliding;

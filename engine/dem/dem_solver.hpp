@@ -132,6 +132,7 @@ class DemSolver {
   bool parallel_ = false;  // threads_ > 1 and enough particles to pay for a fork
   StepDiagnostics diag_;
   std::vector<double> overlap_;
+  std::vector<std::int32_t> wall_active_;  // scratch of the wall sweeps: particles touching a wall
   mutable PhaseTimes times_;
   std::vector<StepPartial> partial_;  // per thread
   std::vector<double> block_ke_;      // J, per block of particles (core/threads.hpp)

@@ -14,7 +14,9 @@ void NeighbourList::configure(double width, double height, double dmax, double s
   grid_.configure(width, height, std::max(dmax + skin, sparse));
   first_begin.assign(particles + 1, 0);
   second_begin.assign(particles + 1, 0);
+  gather_begin.assign(particles + 1, 0);
   built_ = false;
+  built_once_ = false;
 }
 
 bool NeighbourList::stale(const Particles& p) const { return stale(p, 0, p.size()); }
@@ -60,46 +62,66 @@ void NeighbourList::build(const Particles& p, const PairContacts* seed) {
   const double* y = p.y.data();
   const double* r = p.radius.data();
   // Candidates in (i, j) order straight away: for each i in turn, the partners j > i in the nine
-  // cells around it, sorted (a handful). No sort of the whole list, no allocation once warm.
+  // cells around it, sorted (a handful, by insertion). No sort of the whole list, no allocation
+  // once warm. The filter is branch-free (every candidate is written, the count advances only
+  // for the ones kept): whether a neighbour is within reach follows no pattern a branch
+  // predictor could learn.
   ni_.clear();
   nj_.clear();
+  ndn_.clear();
+  nds_.clear();
+  nt_.clear();
+  near_.resize(n + 1);
+  std::int32_t* nb = near_.data();
+  // The old history is merged particle by particle, through the old list's first_begin
+  // (each particle's old entries, sorted by j), which is overwritten as the new one is made.
+  // A saved history (`seed`) is merged afterwards instead.
+  const bool carry = !seed && built_once_;
+  std::int32_t* fb = first_begin.data();
   for (std::size_t a = 0; a < n; ++a) {
-    near_.clear();
     const double xa = x[a], ya = y[a], ra = r[a] + skin_;
+    const auto ia = static_cast<std::int32_t>(a);
+    int count = 0;
     grid_.for_each_near(xa, ya, [&](std::int32_t b) {
-      if (static_cast<std::size_t>(b) <= a) return;
       const double dx = x[b] - xa, dy = y[b] - ya;
       const double reach = ra + r[b];
-      if (dx * dx + dy * dy < reach * reach) near_.push_back(b);
+      nb[count] = b;
+      count += (b > ia) & (dx * dx + dy * dy < reach * reach);
     });
-    std::sort(near_.begin(), near_.end());
-    for (std::int32_t b : near_) {
-      ni_.push_back(static_cast<std::int32_t>(a));
+    for (int q = 1; q < count; ++q) {  // insertion sort: a handful, nearly in order
+      const std::int32_t v = nb[q];
+      int u = q;
+      for (; u > 0 && nb[u - 1] > v; --u) nb[u] = nb[u - 1];
+      nb[u] = v;
+    }
+    std::int32_t o = carry ? fb[a] : 0;
+    const std::int32_t oe = carry ? fb[a + 1] : 0;
+    fb[a] = static_cast<std::int32_t>(ni_.size());
+    for (int q = 0; q < count; ++q) {
+      const std::int32_t b = nb[q];
+      while (o < oe && j[o] < b) ++o;
+      const bool kept = o < oe && j[o] == b && touching[o] != 0;
+      ni_.push_back(ia);
       nj_.push_back(b);
+      ndn_.push_back(kept ? dn[o] : 0.0);
+      nds_.push_back(kept ? ds[o] : 0.0);
+      nt_.push_back(kept ? 1 : 0);
     }
   }
   const std::size_t m = ni_.size();
+  fb[n] = static_cast<std::int32_t>(m);
 
-  // Merge the old history (sorted by pair) into the new slots.
-  ndn_.assign(m, 0.0);
-  nds_.assign(m, 0.0);
-  nt_.assign(m, 0);
-  const std::vector<std::int32_t>& oi = seed ? seed->i : i;
-  const std::vector<std::int32_t>& oj = seed ? seed->j : j;
-  const std::vector<double>& odn = seed ? seed->dn : dn;
-  const std::vector<double>& ods = seed ? seed->ds : ds;
-  auto key = [](std::int32_t u, std::int32_t v) {
-    return static_cast<std::uint64_t>(u) << 32 | static_cast<std::uint32_t>(v);
-  };
-  std::size_t o = 0;
-  for (std::size_t k = 0; k < m; ++k) {
-    const std::uint64_t kk = key(ni_[k], nj_[k]);
-    while (o < oi.size() && key(oi[o], oj[o]) < kk) ++o;
-    if (o < oi.size() && oi[o] == ni_[k] && oj[o] == nj_[k]) {
-      const bool was_touching = seed ? true : touching[o] != 0;
-      if (was_touching) {
-        ndn_[k] = odn[o];
-        nds_[k] = ods[o];
+  if (seed) {  // a saved history (sorted by pair) merged into the new slots
+    auto key = [](std::int32_t u, std::int32_t v) {
+      return static_cast<std::uint64_t>(u) << 32 | static_cast<std::uint32_t>(v);
+    };
+    std::size_t o = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::uint64_t kk = key(ni_[k], nj_[k]);
+      while (o < seed->i.size() && key(seed->i[o], seed->j[o]) < kk) ++o;
+      if (o < seed->i.size() && seed->i[o] == ni_[k] && seed->j[o] == nj_[k]) {
+        ndn_[k] = seed->dn[o];
+        nds_[k] = seed->ds[o];
         nt_[k] = 1;
       }
     }
@@ -117,25 +139,28 @@ void NeighbourList::build(const Particles& p, const PairContacts* seed) {
   ratio.resize(m);
   active.resize(m);
 
-  // Gather lists: entries are sorted by i, so each particle's "first" entries are contiguous;
-  // its "second" entries come from a stable counting sort by j.
-  first_begin.assign(n + 1, 0);
+  // Gather lists: entries are sorted by i, so each particle's "first" entries are contiguous
+  // (first_begin, made above); its "second" entries come from a stable counting sort by j.
   second_begin.assign(n + 1, 0);
-  for (std::size_t k = 0; k < m; ++k) {
-    ++first_begin[i[k] + 1];
-    ++second_begin[j[k] + 1];
-  }
-  for (std::size_t q = 0; q < n; ++q) {
-    first_begin[q + 1] += first_begin[q];
-    second_begin[q + 1] += second_begin[q];
-  }
+  for (std::size_t k = 0; k < m; ++k) ++second_begin[j[k] + 1];
+  for (std::size_t q = 0; q < n; ++q) second_begin[q + 1] += second_begin[q];
   second_pair.resize(m);
   counts_.assign(second_begin.begin(), second_begin.end() - 1);
   for (std::size_t k = 0; k < m; ++k) second_pair[counts_[j[k]]++] = static_cast<std::int32_t>(k);
+  gather_begin.resize(n + 1);
+  gather.resize(2 * m);
+  std::int32_t g = 0;
+  for (std::size_t q = 0; q < n; ++q) {
+    gather_begin[q] = g;
+    for (std::int32_t u = second_begin[q]; u < second_begin[q + 1]; ++u) gather[g++] = ~second_pair[u];
+    for (std::int32_t k = first_begin[q]; k < first_begin[q + 1]; ++k) gather[g++] = k;
+  }
+  gather_begin[n] = g;
 
   x_ref_.assign(p.x.begin(), p.x.end());
   y_ref_.assign(p.y.begin(), p.y.end());
   built_ = true;
+  built_once_ = true;
   ++builds_;
 }
 

@@ -46,12 +46,17 @@ class NeighbourList {
   // Gather lists: entries [first_begin[p], first_begin[p + 1]) have i == p; the entries with
   // j == p are second_pair[second_begin[p] .. second_begin[p + 1]), in ascending order.
   std::vector<std::int32_t> first_begin, second_begin, second_pair;
+  // The same in one list per particle, in the order its forces are summed: the entries where
+  // it is second (stored as ~k: the force on it is minus the slot's), then those where it is
+  // first (k): gather[gather_begin[p] .. gather_begin[p + 1]).
+  std::vector<std::int32_t> gather_begin, gather;
 
  private:
   CellGrid grid_;
   double skin_ = 0.0;
   std::vector<double> x_ref_, y_ref_;
   bool built_ = false;
+  bool built_once_ = false;  // the live arrays and first_begin hold a list (its history)
   bool seeded_ = false;
   PairContacts seed_;
   std::int64_t builds_ = 0;
