@@ -25,6 +25,7 @@ Coupler::Coupler(const GasGrid& grid, const CouplerParams& c, std::size_t partic
   threads_ = resolve_threads(c.threads);
   parallel_ = threads_ > 1 && particles >= 256;
   sums_.configure(grid.cells(), threads_);
+  drag_sums_.configure(grid.cells(), threads_);
   for (auto* v : {&gas_ux_, &gas_uy_, &beta_, &base_fx_, &base_fy_, &drag_x_, &drag_y_, &sum_x_,
                   &sum_y_, &slip_x_, &slip_y_, &slip_, &eps_at_, &ln_eps_at_})
     v->assign(particles, 0.0);
@@ -46,28 +47,29 @@ void Coupler::per_thread(std::size_t n, const std::vector<std::size_t>& split, F
   }
 }
 
-// Thread t's particles [b, e), block by block, into lane t of `sums`.
-template <class F>
-void Coupler::sum_blocks(int t, std::size_t b, std::size_t e, F&& add_particle) {
+const std::vector<double>& Coupler::compute_porosity(const Particles& p, double time,
+                                                     const std::vector<std::size_t>& split) {
+  for (int t = 0; t < sums_.threads(); ++t) sums_.clear(t);
+  per_thread(p.size(), split,
+             [&](int t, std::size_t b, std::size_t e) { porosity_range(p, t, b, e); });
+  return finish_porosity(time);
+}
+
+// Each sphere's shares (the closed forms are the work) summed per cell block by block, so the
+// porosity is the same bits for any thread count.
+void Coupler::porosity_range(const Particles& p, int t, std::size_t b, std::size_t e) {
   for (std::size_t q = b; q < e; q += kParticleBlock) {
     sums_.begin_block(t);
     const std::size_t q1 = std::min(e, q + kParticleBlock);
-    for (std::size_t i = q; i < q1; ++i) add_particle(i);
+    for (std::size_t i = q; i < q1; ++i) {
+      VolumeShares sh;
+      particle_volume_shares(grid_, p.x[i], p.y[i], p.radius[i], sh);
+      for (int c = 0; c < sh.count; ++c) sums_.add(t, sh.cell[c], sh.volume[c], 0.0);
+    }
   }
 }
 
-const std::vector<double>& Coupler::compute_porosity(const Particles& p, double time,
-                                                     const std::vector<std::size_t>& split) {
-  // Each sphere's shares (the closed forms are the work) summed per cell block by block, so the
-  // porosity is the same bits for any thread count.
-  for (int t = 0; t < sums_.threads(); ++t) sums_.clear(t);
-  per_thread(p.size(), split, [&](int t, std::size_t b, std::size_t e) {
-    sum_blocks(t, b, e, [&](std::size_t i) {
-      VolumeShares sh;
-      particle_volume_shares(grid_, p.x[i], p.y[i], p.radius[i], sh);
-      for (int q = 0; q < sh.count; ++q) sums_.add(t, sh.cell[q], sh.volume[q], 0.0);
-    });
-  });
+const std::vector<double>& Coupler::finish_porosity(double time) {
   std::fill(solid_.begin(), solid_.end(), 0.0);
   sums_.add_to(solid_, nullptr);
   porosity_from_solid(grid_, solid_, eps_);
@@ -80,6 +82,23 @@ const std::vector<double>& Coupler::compute_porosity(const Particles& p, double 
     }
   }
   return eps_;
+}
+
+const std::vector<double>& Coupler::exchange(const Particles& p, double time,
+                                             std::vector<double>& fx, std::vector<double>& fy,
+                                             double& total_x, double& total_y,
+                                             const std::vector<std::size_t>& split) {
+  for (int t = 0; t < sums_.threads(); ++t) {
+    sums_.clear(t);
+    drag_sums_.clear(t);
+  }
+  per_thread(p.size(), split, [&](int t, std::size_t b, std::size_t e) {
+    porosity_range(p, t, b, e);
+    drag_sums_range(t, b, e);
+  });
+  const std::vector<double>& eps = finish_porosity(time);
+  finish_interaction_force(fx, fy, total_x, total_y);
+  return eps;
 }
 
 void Coupler::refresh_cells(const GasSolver& gas) {
@@ -136,56 +155,70 @@ void Coupler::freeze_range(Particles& p, std::size_t begin, std::size_t end) {
 }
 
 void Coupler::advance_drag(Particles& p, bool update, const std::vector<std::size_t>& split) {
-  ++accumulated_;
-  per_thread(p.size(), split, [&](int, std::size_t b, std::size_t e) {
-    double* sx = sum_x_.data();
-    double* sy = sum_y_.data();
-    double* dx = drag_x_.data();
-    double* dy = drag_y_.data();
+  count_step();
+  per_thread(p.size(), split,
+             [&](int, std::size_t b, std::size_t e) { advance_drag_range(p, update, b, e); });
+}
+
+void Coupler::advance_drag_range(Particles& p, bool update, std::size_t b, std::size_t e) {
+  double* sx = sum_x_.data();
+  double* sy = sum_y_.data();
+  double* dx = drag_x_.data();
+  double* dy = drag_y_.data();
+  for (std::size_t i = b; i < e; ++i) {
+    sx[i] += dx[i];
+    sy[i] += dy[i];
+  }
+  if (!update) return;
+  const double* beta = beta_.data();
+  const double* ux = gas_ux_.data();
+  const double* uy = gas_uy_.data();
+  const double* bx = base_fx_.data();
+  const double* by = base_fy_.data();
+  const double* vx = p.vx.data();
+  const double* vy = p.vy.data();
+  double* fx = p.ext_fx.data();
+  double* fy = p.ext_fy.data();
+  if (pressure_gradient_force_) {
     for (std::size_t i = b; i < e; ++i) {
-      sx[i] += dx[i];
-      sy[i] += dy[i];
+      dx[i] = beta[i] * (ux[i] - vx[i]);
+      dy[i] = beta[i] * (uy[i] - vy[i]);
+      fx[i] = dx[i] + bx[i];
+      fy[i] = dy[i] + by[i];
     }
-    if (!update) return;
-    const double* beta = beta_.data();
-    const double* ux = gas_ux_.data();
-    const double* uy = gas_uy_.data();
-    const double* bx = base_fx_.data();
-    const double* by = base_fy_.data();
-    const double* vx = p.vx.data();
-    const double* vy = p.vy.data();
-    double* fx = p.ext_fx.data();
-    double* fy = p.ext_fy.data();
-    if (pressure_gradient_force_) {
-      for (std::size_t i = b; i < e; ++i) {
-        dx[i] = beta[i] * (ux[i] - vx[i]);
-        dy[i] = beta[i] * (uy[i] - vy[i]);
-        fx[i] = dx[i] + bx[i];
-        fy[i] = dy[i] + by[i];
-      }
-    } else {
-      for (std::size_t i = b; i < e; ++i) {
-        fx[i] = dx[i] = beta[i] * (ux[i] - vx[i]);
-        fy[i] = dy[i] = beta[i] * (uy[i] - vy[i]);
-      }
+  } else {
+    for (std::size_t i = b; i < e; ++i) {
+      fx[i] = dx[i] = beta[i] * (ux[i] - vx[i]);
+      fy[i] = dy[i] = beta[i] * (uy[i] - vy[i]);
     }
-  });
+  }
 }
 
 void Coupler::take_interaction_force(std::vector<double>& fx, std::vector<double>& fy,
                                      double& total_x, double& total_y,
                                      const std::vector<std::size_t>& split) {
-  // Each particle's summed drag into its frozen cell, block by block (the same bits for any
-  // thread count), then the sums reset.
-  for (int t = 0; t < sums_.threads(); ++t) sums_.clear(t);
-  const std::size_t n = cell_.size();
-  per_thread(n, split, [&](int t, std::size_t b, std::size_t e) {
-    sum_blocks(t, b, e, [&](std::size_t i) { sums_.add(t, cell_[i], sum_x_[i], sum_y_[i]); });
-    for (std::size_t i = b; i < e; ++i) sum_x_[i] = sum_y_[i] = 0.0;
-  });
+  for (int t = 0; t < drag_sums_.threads(); ++t) drag_sums_.clear(t);
+  per_thread(cell_.size(), split,
+             [&](int t, std::size_t b, std::size_t e) { drag_sums_range(t, b, e); });
+  finish_interaction_force(fx, fy, total_x, total_y);
+}
+
+// Each particle's summed drag into its frozen cell, block by block (the same bits for any
+// thread count), then the particle sums reset.
+void Coupler::drag_sums_range(int t, std::size_t b, std::size_t e) {
+  for (std::size_t q = b; q < e; q += kParticleBlock) {
+    drag_sums_.begin_block(t);
+    const std::size_t q1 = std::min(e, q + kParticleBlock);
+    for (std::size_t i = q; i < q1; ++i) drag_sums_.add(t, cell_[i], sum_x_[i], sum_y_[i]);
+  }
+  for (std::size_t i = b; i < e; ++i) sum_x_[i] = sum_y_[i] = 0.0;
+}
+
+void Coupler::finish_interaction_force(std::vector<double>& fx, std::vector<double>& fy,
+                                       double& total_x, double& total_y) {
   std::fill(cell_sum_x_.begin(), cell_sum_x_.end(), 0.0);
   std::fill(cell_sum_y_.begin(), cell_sum_y_.end(), 0.0);
-  sums_.add_to(cell_sum_x_, &cell_sum_y_);
+  drag_sums_.add_to(cell_sum_x_, &cell_sum_y_);
   const std::size_t cells = cell_sum_x_.size();
   fx.resize(cells);
   fy.resize(cells);

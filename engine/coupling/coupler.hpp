@@ -69,12 +69,22 @@ class Coupler {
   // (when `update`, i.e. no gas step follows) the force of the next step from the frozen
   // coefficients.
   void advance_drag(Particles& p, bool update, const std::vector<std::size_t>& split = {});
+  // The same in two parts, for a caller that runs the particles' share inside its own parallel
+  // region: count_step() once, then advance_drag_range() on every thread's particles.
+  void count_step() { ++accumulated_; }
+  void advance_drag_range(Particles& p, bool update, std::size_t begin, std::size_t end);
 
   // F per cell (N/m^3): each particle's summed drag in its frozen cell, averaged over the steps
   // since the last call; resets the sums. Also returns the total drag on the particles over
   // those steps (N, averaged) for the third-law check.
   void take_interaction_force(std::vector<double>& fx, std::vector<double>& fy, double& total_x,
                               double& total_y, const std::vector<std::size_t>& split = {});
+
+  // What a gas step needs, in one pass of the threads over the particles: compute_porosity()
+  // and take_interaction_force() (the same results).
+  const std::vector<double>& exchange(const Particles& p, double time, std::vector<double>& fx,
+                                      std::vector<double>& fy, double& total_x, double& total_y,
+                                      const std::vector<std::size_t>& split = {});
 
   void save(CouplingState& out) const;
   // Throws InputError when the sizes do not fit this grid and particle count.
@@ -92,12 +102,16 @@ class Coupler {
   bool parallel_ = false;
   template <class F>
   void per_thread(std::size_t n, const std::vector<std::size_t>& split, F&& body);
-  template <class F>
-  void sum_blocks(int t, std::size_t b, std::size_t e, F&& add_particle);
 
   void freeze_range(Particles& p, std::size_t begin, std::size_t end);
+  void porosity_range(const Particles& p, int t, std::size_t begin, std::size_t end);
+  void drag_sums_range(int t, std::size_t begin, std::size_t end);
+  const std::vector<double>& finish_porosity(double time);
+  void finish_interaction_force(std::vector<double>& fx, std::vector<double>& fy, double& total_x,
+                                double& total_y);
 
-  BlockCellSums sums_;  // per-cell sums over particles, block by block
+  BlockCellSums sums_;       // per-cell sums over particles, block by block: solid volume
+  BlockCellSums drag_sums_;  // idem: drag
   std::vector<double> cell_ux_, cell_uy_, cell_gx_, cell_gy_, ln_eps_;  // per cell
   std::vector<double> solid_, eps_;
   // Per particle, frozen at the last gas step: the cell of its centre, the gas velocity there

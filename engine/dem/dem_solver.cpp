@@ -338,7 +338,7 @@ void DemSolver::balance(int T) {
 }
 
 template <bool Incremental>
-void DemSolver::step_particles() {
+void DemSolver::step_particles(const RangeWork& after) {
   const double h = dt_;
   for (auto& a : partial_) a = StepPartial{};
   // One parallel region per step: every loop over particles uses the same block split, so each
@@ -378,6 +378,10 @@ void DemSolver::step_particles() {
     lap(Phase::Contacts);
     partial_[t].outside = after_forces(b, e);
     lap(Phase::Integration);
+    if (after) {
+      after(b, e);
+      lap(Phase::Coupling);
+    }
   }
   StepPartial sum;
   for (const auto& a : partial_) {
@@ -399,7 +403,7 @@ void DemSolver::step_particles() {
   outside_ = sum.outside;
 }
 
-void DemSolver::step() {
+void DemSolver::step(const RangeWork& after) {
   Particles& P = state_.particles;
   if (frozen_) {  // a fixed bed: the clock runs, nothing moves
     std::fill(P.vx.begin(), P.vx.end(), 0.0);
@@ -407,12 +411,13 @@ void DemSolver::step() {
     std::fill(P.w.begin(), P.w.end(), 0.0);
     state_.time = static_cast<double>(++state_.step) * dt_;
     diag_.kinetic_energy = 0.0;
+    if (after) after(0, P.size());
     return;
   }
   if (incremental_) {
-    step_particles<true>();
+    step_particles<true>(after);
   } else {
-    step_particles<false>();
+    step_particles<false>(after);
   }
   state_.time = static_cast<double>(++state_.step) * dt_;
   PhaseClock clock(times_);

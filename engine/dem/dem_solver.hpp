@@ -3,6 +3,7 @@
 // integrators (the paper's Newmark predictor-corrector, velocity Verlet, symplectic Euler).
 // Forces from the gas come in through Particles::ext_fx/ext_fy and are held over a step.
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -61,8 +62,14 @@ class DemSolver {
   // Takes the particles (placed, with mass properties) and builds the grid and history.
   DemSolver(const DemParams& params, Particles particles);
 
-  // One time step of dt. Throws SimulationFailure when the state stops making sense.
-  void step();
+  // Work of another part of the model on each thread's particles [b, e), run inside the step's
+  // parallel region once the particles have moved (the coupler's drag update), so that a step
+  // forks its threads once.
+  using RangeWork = std::function<void(std::size_t b, std::size_t e)>;
+
+  // One time step of dt, then `after` (may be empty) on every particle. Throws
+  // SimulationFailure when the state stops making sense.
+  void step(const RangeWork& after = {});
 
   // The live state; its `pairs` member is not kept current while running (see exported_state).
   const DemState& state() const { return state_; }
@@ -106,7 +113,7 @@ class DemSolver {
     bool stale = false, outside = false;
   };
   template <bool Incremental>
-  void step_particles();
+  void step_particles(const RangeWork& after);
   template <bool Incremental>
   void pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPartial& acc);
   template <bool Incremental>

@@ -70,34 +70,37 @@ void Simulation::set_superficial_velocity(double u) {
 }
 
 void Simulation::step() {
-  dem_.step();
-  if (!gas_) return;
-  PhaseClock clock(dem_.phase_times());
-  Particles& p = dem_.particles();
-  const auto& split = dem_.split();  // each particle's forces where its data is
+  if (!gas_) {
+    dem_.step();
+    return;
+  }
   // The gas every particle_steps_per_gas_step steps, or sooner while the gas is fast: a gas
   // step that would start above kGasCflTarget (the jet opening its cavity, a velocity raised
   // in the viewer) is taken now. With the paper's one step per gas step this never acts.
-  ++since_gas_step_;
-  const bool fast = gas_speed_ * (since_gas_step_ + 1) * settings_.time.dt > kGasCflTarget;
-  const bool gas_now = since_gas_step_ >= settings_.coupling.particle_steps_per_gas_step || fast;
-  // The drag the particles felt in this step joins the gas's sums; the next step's force comes
-  // from the frozen coefficients, or, after a gas step, from new ones.
-  coupler_->advance_drag(p, !gas_now, split);
+  const int since = since_gas_step_ + 1;
+  const bool fast = gas_speed_ * (since + 1) * settings_.time.dt > kGasCflTarget;
+  const bool gas_now = since >= settings_.coupling.particle_steps_per_gas_step || fast;
+  // Inside the particle step's threads: the drag the particles felt in this step joins the
+  // gas's sums, and, unless the gas steps now, the next step's force comes from the frozen
+  // coefficients (after a gas step, from new ones).
+  Particles& p = dem_.particles();
+  coupler_->count_step();
+  dem_.step([&](std::size_t b, std::size_t e) { coupler_->advance_drag_range(p, !gas_now, b, e); });
+  since_gas_step_ = since;
   if (gas_now) {
+    PhaseClock clock(dem_.phase_times());
     gas_step(clock);
-    coupler_->freeze_drag(p, split);
+    coupler_->freeze_drag(p, dem_.split());
+    clock.lap(Phase::Coupling);
   }
-  clock.lap(Phase::Coupling);
 }
 
 void Simulation::gas_step(PhaseClock& clock) {
   const double dt = since_gas_step_ * settings_.time.dt;
   since_gas_step_ = 0;
-  const auto& split = dem_.split();
-  const auto& eps = coupler_->compute_porosity(dem_.particles(), time(), split);
   CouplingDiagnostics& d = coupling_diag_;
-  coupler_->take_interaction_force(fx_, fy_, d.drag_total_x, d.drag_total_y, split);
+  const auto& eps = coupler_->exchange(dem_.particles(), time(), fx_, fy_, d.drag_total_x,
+                                       d.drag_total_y, dem_.split());
   clock.lap(Phase::Coupling);
   d.gas = gas_->step(dt, eps, fx_, fy_);
   clock.lap(Phase::Gas);
