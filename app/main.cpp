@@ -3,11 +3,11 @@
 #include <cstdio>
 #include <iostream>
 
-#include "commands.hpp"
-#include "export_command.hpp"
-#include "study_command.hpp"
-#include "bench_peer.hpp"
-#include "view_command.hpp"
+#include "cli/bench_peer.hpp"
+#include "cli/commands.hpp"
+#include "cli/export.hpp"
+#include "cli/study.hpp"
+#include "cli/view.hpp"
 #include "core/errors.hpp"
 
 namespace {
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "measure speed (default scene: packing)");
   add_scene_options(bench, bench_args, false);
   bench->add_option("--out", bench_args.out, "folder for bench.json (default out/bench)");
-  std::string bench_peer;  // bench --peer liggghts (app/bench_peer.hpp)
+  std::string bench_peer;  // bench --peer liggghts (app/cli/bench_peer.hpp)
   bench->add_option("--peer", bench_peer, "also run the same work in another code: liggghts");
 
   auto* sweep = app.add_subcommand("sweep", "the paper's velocity sweep (Fig. 6) and U_mf");

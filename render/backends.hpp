@@ -3,7 +3,7 @@
 // current on the calling thread, with its entry points loaded.
 #include <memory>
 
-#include "gl_context.hpp"
+#include "render/gl_context.hpp"
 
 namespace fluidbed::render {
 

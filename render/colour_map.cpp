@@ -1,4 +1,4 @@
-#include "colour_map.hpp"
+#include "render/colour_map.hpp"
 
 #include <algorithm>
 #include <array>

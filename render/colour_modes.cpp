@@ -1,4 +1,4 @@
-#include "colour_modes.hpp"
+#include "render/colour_modes.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "colour_map.hpp"
+#include "render/colour_map.hpp"
 #include "sim/snapshot.hpp"
 
 namespace fluidbed::render {

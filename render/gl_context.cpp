@@ -1,9 +1,9 @@
-#include "gl_context.hpp"
+#include "render/gl_context.hpp"
 
 #include <stdexcept>
 
-#include "backends.hpp"
 #include "core/errors.hpp"
+#include "render/backends.hpp"
 
 namespace fluidbed::render {
 

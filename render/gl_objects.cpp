@@ -1,8 +1,8 @@
-#include "gl_objects.hpp"
+#include "render/gl_objects.hpp"
 
 #include <stdexcept>
 
-#include "shader_sources.hpp"
+#include "render/shader_sources.hpp"
 
 namespace fluidbed::render {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 #include <utility>
 
-#include "gl_context.hpp"
+#include "render/gl_context.hpp"
 
 namespace fluidbed::render {
 

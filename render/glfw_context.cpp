@@ -6,7 +6,7 @@
 
 #include <stdexcept>
 
-#include "backends.hpp"
+#include "render/backends.hpp"
 
 namespace fluidbed::render {
 namespace {

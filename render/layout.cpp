@@ -1,4 +1,4 @@
-#include "layout.hpp"
+#include "render/layout.hpp"
 
 #include <algorithm>
 #include <cmath>

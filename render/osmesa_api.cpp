@@ -1,4 +1,4 @@
-#include "osmesa_api.hpp"
+#include "render/osmesa_api.hpp"
 
 #include <GL/osmesa.h>
 

@@ -4,8 +4,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "backends.hpp"
-#include "osmesa_api.hpp"
+#include "render/backends.hpp"
+#include "render/osmesa_api.hpp"
 
 namespace fluidbed::render {
 namespace {

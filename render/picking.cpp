@@ -1,4 +1,4 @@
-#include "picking.hpp"
+#include "render/picking.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "layout.hpp"
+#include "render/layout.hpp"
 #include "sim/snapshot.hpp"
 
 namespace fluidbed::render {

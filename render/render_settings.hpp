@@ -1,7 +1,7 @@
 #pragma once
 // What a frame shows and how (plain settings with defaults; units in the comments).
-#include "colour_map.hpp"
-#include "colour_modes.hpp"
+#include "render/colour_map.hpp"
+#include "render/colour_modes.hpp"
 
 namespace fluidbed::render {
 

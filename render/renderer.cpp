@@ -1,4 +1,4 @@
-#include "renderer.hpp"
+#include "render/renderer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "font.hpp"
-#include "gl_objects.hpp"
+#include "render/font.hpp"
+#include "render/gl_objects.hpp"
 
 namespace fluidbed::render {
 namespace {

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "gl_context.hpp"
-#include "image.hpp"
-#include "layout.hpp"
-#include "render_settings.hpp"
+#include "render/gl_context.hpp"
+#include "render/image.hpp"
+#include "render/layout.hpp"
+#include "render/render_settings.hpp"
 #include "sim/snapshot.hpp"
 
 namespace fluidbed::render {

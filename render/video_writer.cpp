@@ -1,4 +1,4 @@
-#include "video_writer.hpp"
+#include "render/video_writer.hpp"
 
 #include <fcntl.h>
 #include <signal.h>

@@ -4,7 +4,7 @@
 // when ffmpeg finished it.
 #include <string>
 
-#include "image.hpp"
+#include "render/image.hpp"
 
 namespace fluidbed::render {
 

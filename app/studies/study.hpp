@@ -14,9 +14,9 @@
 #include <thread>
 #include <vector>
 
-#include "chart.hpp"
-#include "scene/settings.hpp"
+#include "chart/chart.hpp"
 #include "run/run.hpp"
+#include "scene/settings.hpp"
 
 namespace fluidbed::app::study {
 

@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "gl_context.hpp"
-#include "image.hpp"
-#include "renderer.hpp"
+#include "render/gl_context.hpp"
+#include "render/image.hpp"
+#include "render/renderer.hpp"
+#include "render/video_writer.hpp"
+#include "run/packed_bed.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
 #include "sim/snapshot.hpp"
-#include "video_writer.hpp"
-#include "run/packed_bed.hpp"
 
 namespace {
 

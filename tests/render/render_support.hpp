@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "colour_map.hpp"
-#include "image.hpp"
+#include "render/colour_map.hpp"
+#include "render/image.hpp"
 #include "sim/snapshot.hpp"
 
 namespace fluidbed::testing {

@@ -8,13 +8,13 @@
 #include <memory>
 #include <stdexcept>
 
-#include "colour_modes.hpp"
-#include "core/errors.hpp"
-#include "gl_context.hpp"
-#include "layout.hpp"
-#include "render_support.hpp"
-#include "renderer.hpp"
 #include "../test_support.hpp"
+#include "core/errors.hpp"
+#include "render/colour_modes.hpp"
+#include "render/gl_context.hpp"
+#include "render/layout.hpp"
+#include "render/renderer.hpp"
+#include "render_support.hpp"
 
 using namespace fluidbed;
 using namespace fluidbed::render;

@@ -12,7 +12,7 @@
 
 #include <sys/wait.h>
 #include "../view/view_scene.hpp"
-#include "picking.hpp"
+#include "render/picking.hpp"
 #include "render_support.hpp"
 
 namespace fluidbed::testing {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "chart.hpp"
+#include "chart/chart.hpp"
 
 using fluidbed::chart::Axis;
 using fluidbed::chart::Box;

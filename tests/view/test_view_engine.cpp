@@ -11,9 +11,9 @@
 
 #include "core/errors.hpp"
 #include "sim/snapshot.hpp"
-#include "view_engine.hpp"
+#include "view/engine.hpp"
+#include "view/script.hpp"
 #include "view_scene.hpp"
-#include "view_script.hpp"
 
 namespace fluidbed {
 namespace {

@@ -1,0 +1,61 @@
+#pragma once
+// The verbs of the command line. Each returns the process exit status; input errors and
+// simulation failures propagate as exceptions and are turned into statuses 2 and 3 by main.
+#include <string>
+#include <vector>
+
+namespace fluidbed::app {
+
+// Pictures and files of a run at exact simulated times (`run --frames --video --vtk --montage`,
+// see output/frames.hpp and README.md).
+struct OutputArgs {
+  bool frames = false, video = false, vtk = false;
+  std::string montage;                  // "0.2,0.4,0.6" (s); empty: none
+  double frame_interval = 0.04;         // s of simulated time (25 frames per simulated second)
+  std::string frame_size = "1280x720";  // px
+  std::string colour = "speed";         // speed, force, torque, overlap, height, fixed
+  std::string colour_range;             // "MIN,MAX" in the quantity's unit; empty: its default
+  bool gas_arrows = true, gas_arrow_colour = false, particle_arrows = false;
+  bool porosity_background = false, dark = false;
+  double close_up = 0.4;                // frames: magnified lower fraction of the bed (0: none)
+  double video_fps = 25.0;
+  std::string gl_backend = "osmesa";
+};
+
+struct RunArgs {
+  std::string scene;
+  std::vector<std::string> overrides;
+  double until = -1.0;  // s, < 0: the scene's time.end
+  std::string out;      // output folder; empty: out/<scene file name>
+  int threads = 1;      // threads inside a step; 0: one per core
+  OutputArgs output;    // run only
+  bool plots = false;   // run: dp.png, overlap.png, trajectory.png
+  std::string track;    // run --plots: particle ids "12,345"; empty: two from the jet region
+};
+
+struct SweepArgs {
+  std::string scene;
+  std::vector<std::string> overrides;
+  std::string velocities;        // "0.5,1.0,..." (m/s); empty: the default 23
+  double run_time = 1.5;         // s per velocity
+  double averaging_start = 0.5;  // s into each run
+  int threads = 2;               // runs side by side
+  std::string out;
+};
+
+struct ReproduceArgs {
+  std::string out;
+  std::vector<std::string> overrides;  // applied to every scene (e.g. a smaller bed)
+  bool quick = false;  // every figure at lower fidelity, in minutes
+  int threads = 1;
+};
+
+int run_command(const RunArgs& a);
+int bench_command(const RunArgs& a);
+int sweep_command(const SweepArgs& a);
+int reproduce_command(const ReproduceArgs& a);
+
+// The shipped assets folder (scenes, fonts): $FLUIDBED_ASSETS, else the source tree's.
+std::string asset_dir();
+
+}  // namespace fluidbed::app

@@ -1,0 +1,200 @@
+// fluidbed reproduce: every figure and number of the paper that the model gives, in one folder
+// with a report to hold next to the paper (Xu & Yu 1997).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/commands.hpp"
+#include "core/atomic_file.hpp"
+#include "core/threads.hpp"
+#include "output/plots.hpp"
+#include "run/packed_bed.hpp"
+#include "run/run.hpp"
+#include "run/sweep.hpp"
+#include "scene/scene_loader.hpp"
+#include "sim/simulation.hpp"
+#include "studies/study.hpp"
+
+namespace fluidbed::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TrackedRun {
+  RunResult result;
+  std::vector<Trajectory> tracks;
+  double wall = 0.0;
+};
+
+TrackedRun run_tracked(Settings s, double until,
+                       const std::vector<std::pair<double, double>>& track_at) {
+  TrackedRun out;
+  prepare_packed_bed(s);
+  Simulation sim(s);
+  TrajectoryRecorder recorder(nearest_particles(sim.dem().particles(), track_at), 0.005, s.time.dt);
+  RunOptions opt;
+  opt.until = until;
+  opt.on_step = [&](const Simulation& m) { recorder.observe(m); };
+  const auto start = std::chrono::steady_clock::now();
+  out.result = run_simulation(sim, opt);
+  out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.tracks = recorder.tracks();
+  return out;
+}
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+double num(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+}  // namespace
+
+int reproduce_command(const ReproduceArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string out = a.out.empty() ? "out/reproduce" : a.out;
+  fs::create_directories(out);
+  const std::string scenes = asset_dir() + "/scenes/";
+  auto log = [](const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  };
+  // Lengths: the full report, or a quick pass that shows every figure at lower fidelity.
+  const double paper_time = a.quick ? 1.5 : 6.0;
+  const double ideal_time = a.quick ? 1.5 : 4.0;
+  SweepOptions so;
+  so.run_time = a.quick ? 0.5 : 1.5;
+  so.averaging_start = a.quick ? 0.2 : 0.5;
+  if (a.quick) so.velocities = {0.5, 1.0, 1.5, 2.0, 2.5, 3.0};
+  so.threads = 2;
+  so.out_dir = (fs::path(out) / "sweep").string();
+  so.log = log;
+  const double averaging = a.quick ? 0.5 : 1.0;
+
+  // 1. The paper's bed at 2.8 m/s (Figs 8, 12-13, 15), tracking particles from the jet region.
+  log("== the paper's bed at U = 2.8 m/s");
+  Settings paper = load_scene(scenes + "xu_yu_1997.toml", a.overrides);
+  paper.threads = a.threads;
+  paper.diagnostics.averaging_start = averaging;
+  const TrackedRun pr = run_tracked(paper, paper_time, jet_region_points(paper.domain.width));
+  const fs::path paper_dir = fs::path(out) / "paper_bed";
+  write_run_outputs(paper_dir.string(), pr.result);
+  plot_run(paper_dir.string(), pr.result, pr.tracks, paper.domain.width, paper.domain.height, true);
+
+  // 2. The ideal case (Figs 16-17).
+  log("== the ideal case (eta = 0, gamma = 0)");
+  Settings ideal = load_scene(scenes + "ideal.toml", a.overrides);
+  ideal.threads = a.threads;
+  ideal.diagnostics.averaging_start = averaging;
+  const TrackedRun ir = run_tracked(ideal, ideal_time, {});
+  const fs::path ideal_dir = fs::path(out) / "ideal";
+  write_run_outputs(ideal_dir.string(), ir.result);
+  plot_run(ideal_dir.string(), ir.result, {}, ideal.domain.width, ideal.domain.height, true);
+
+  // 3. The velocity sweep (Fig. 6) and U_mf.
+  log("== the velocity sweep");
+  Settings sweep_scene = load_scene(scenes + "xu_yu_1997.toml", a.overrides);
+  const SweepResult sr = run_sweep(sweep_scene, so);
+  write_sweep_outputs(sr, so, sweep_scene.scene.name);
+
+  // 4. The studies (speed against accuracy, stability, model choices): tiny with --quick. They
+  // use their own scenes; the --set overrides above do not apply to them.
+  std::vector<study::Report> studies;
+  for (const study::Info& info : study::all_studies()) {
+    log("== study " + std::string(info.name));
+    study::Options so_study;
+    so_study.out = (fs::path(out) / "studies" / info.name).string();
+    so_study.size = a.quick ? study::Size::Tiny : study::Size::Full;
+    so_study.log = log;
+    studies.push_back(study::run_study(info, so_study));
+  }
+
+  // 5. The report.
+  const auto& pj = pr.result.summary;
+  const auto& ij = ir.result.summary;
+  const double weight = num(pj, "bed_weight_per_area_pa");
+  const double dp_mean = num(pj, "dp_mean_pa");
+  const double wall_per_sim = pr.wall / std::max(paper_time, 1e-9);
+  std::ostringstream md;
+  md << "# fluidbed against Xu & Yu (1997)\n\n";
+  md << "Made by `fluidbed reproduce" << (a.quick ? " --quick" : "") << "`. Every number below "
+     << "is measured by this run; none is tuned to the paper.\n\n";
+  md << "| paper figure or number | paper | fluidbed | difference |\n|---|---|---|---|\n";
+  if (sr.umf.ok) {
+    md << "| U_mf, decreasing branch (Fig. 6, point E) | 1.8 m/s (Wen-Yu 1.77) | "
+       << fmt("%.2f m/s", sr.umf.umf) << " | " << fmt("%+.0f %%", 100.0 * (sr.umf.umf / 1.8 - 1.0))
+       << " |\n";
+  } else {
+    md << "| U_mf, decreasing branch (Fig. 6) | 1.8 m/s | not found: " << sr.umf.why << " | |\n";
+  }
+  md << "| plateau of the decreasing branch / bed weight per area | about 1 | "
+     << fmt("%.0f Pa / ", sr.umf.plateau) << fmt("%.0f Pa", sr.bed_weight_per_area) << " | "
+     << fmt("%+.0f %%", 100.0 * (sr.umf.plateau / sr.bed_weight_per_area - 1.0)) << " |\n";
+  md << "| mean dp at 2.8 m/s after start-up (eq 30, Fig. 8) | about the bed weight | "
+     << fmt("%.0f Pa", dp_mean) << fmt(" (weight %.0f Pa)", weight) << " | "
+     << fmt("%+.0f %%", 100.0 * (dp_mean / weight - 1.0)) << " |\n";
+  md << "| start-up peak of dp (Fig. 8) | far above the stable level | "
+     << fmt("%.0f Pa", num(pj, "dp_max_pa")) << fmt(" at t = %.3f s", num(pj, "dp_max_time_s"))
+     << " | " << fmt("%.1f x the mean", num(pj, "dp_max_pa") / dp_mean) << " |\n";
+  md << "| max overlap ratio at start-up (Fig. 15) | 1.7 % | "
+     << fmt("%.2f %%", 100.0 * num(pj, "max_overlap_ratio")) << " | |\n";
+  md << "| max overlap ratio after start-up (Fig. 15) | well below 1 % | "
+     << fmt("%.2f %%", 100.0 * num(pj, "max_overlap_ratio_after_startup")) << " | |\n";
+  md << "| ideal case: dominant period of dp (Fig. 17) | a regular cycle | "
+     << fmt("%.3f s", num(ij, "dp_dominant_period_s"))
+     << fmt(" (cycle-length spread %.0f %%)", 100.0 * num(ij, "dp_cycle_length_cv")) << " | |\n";
+  md << "| realistic bed: dominant period of dp | irregular | "
+     << fmt("%.3f s", num(pj, "dp_dominant_period_s"))
+     << fmt(" (cycle-length spread %.0f %%)", 100.0 * num(pj, "dp_cycle_length_cv")) << " | |\n";
+  md << "| cost of 1 s of the paper's bed | 9 h CPU (HP-735) | "
+     << fmt("%.0f s wall", wall_per_sim)
+     << " (" << resolve_threads(paper.threads) << (resolve_threads(paper.threads) == 1 ? " thread)" : " threads)")
+     << " | "
+     << fmt("%.0f x faster", 9.0 * 3600.0 / wall_per_sim) << " |\n\n";
+  md << "## Figures\n\n";
+  md << "Fig. 6, the sweep: ![sweep](sweep/sweep.png)\n\n";
+  md << "Fig. 8, dp against time at 2.8 m/s: ![dp](paper_bed/dp.png)\n\n";
+  md << "Fig. 15, max overlap ratio: ![overlap](paper_bed/overlap.png)\n\n";
+  md << "Figs 12-13, particles from the jet region: ![trajectory](paper_bed/trajectory.png)\n\n";
+  md << "Fig. 17, the ideal case's dp: ![ideal](ideal/dp.png)\n\n";
+  md << "## Studies: speed against accuracy, stability, model choices\n\n";
+  md << "Each study below is `fluidbed study NAME" << (a.quick ? " --size tiny" : "")
+     << "`; its table is `studies/NAME/study.csv`, its full findings `studies/NAME/summary.md`. "
+     << "The advice is derived from the study's own measurements by the rule it states.\n\n";
+  for (const auto& st : studies) {
+    md << "### " << st.title << "\n\n";
+    for (const auto& c : st.charts)
+      md << "![" << st.name << "](studies/" << st.name << "/" << c << ")\n\n";
+    md << st.advice << " (" << st.points << " points, " << st.failed << " failed runs recorded; "
+       << fmt("%.0f s", st.wall_time) << "; [findings](studies/" << st.name << "/summary.md))\n\n";
+  }
+  md << "## Settings\n\n";
+  md << "- paper bed: `assets/scenes/xu_yu_1997.toml`, " << paper_time << " s simulated, "
+     << "averaging from " << averaging << " s; ideal: `assets/scenes/ideal.toml`, " << ideal_time
+     << " s.\n";
+  md << "- sweep: " << sr.up.size() << " velocities, " << so.run_time << " s each, averaging from "
+     << so.averaging_start << " s; U_mf: least-squares line through the defluidized points of "
+     << "the decreasing branch meets the mean of its plateau (split at least squared error).\n";
+  const double total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!a.overrides.empty()) {
+    md << "- overrides applied to every scene:";
+    for (const auto& o : a.overrides) md << " `" << o << "`";
+    md << "\n";
+  }
+  md << "- wall time of this report: " << fmt("%.0f s", total) << ".\n";
+  const std::string report = (fs::path(out) / "report.md").string();
+  write_file_atomically(report, [&](std::ostream& o) { o << md.str(); });
+  log("wrote " + report);
+  return 0;
+}
+
+}  // namespace fluidbed::app

@@ -1,0 +1,170 @@
+#include "cli/view.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "core/errors.hpp"
+#include "output/frames.hpp"
+#include "render/gl_context.hpp"
+#include "render/renderer.hpp"
+#include "scene/scene_loader.hpp"
+#include "view/engine.hpp"
+#include "view/script.hpp"
+#include "view/window.hpp"
+
+namespace fluidbed::app {
+namespace {
+
+bool has_display() {
+  const char* x = std::getenv("DISPLAY");
+  const char* w = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (w && *w);
+}
+
+// The panel calls the initial-height colouring "mixing"; `run` calls it "height".
+OutputArgs with_run_names(OutputArgs o) {
+  if (o.colour == "mixing") o.colour = "height";
+  return o;
+}
+
+// Without a window: the scene run headlessly with frames every --frame-interval (as `run
+// --frames`), the script's gas velocity, ideal case and screenshots applied at their simulated
+// times.
+int view_headless(const Settings& s, const ViewArgs& a, const std::vector<ScriptLine>& script,
+                  FrameOptions fo, const std::string& out) {
+  using K = ScriptLine::Kind;
+  ViewModel model(s);
+  const double dt = s.time.dt;
+  // The end: the script's quit (at the last time it named), else --until, else the scene's end.
+  double until = a.run_like.until >= 0.0 ? a.run_like.until : s.time.end;
+  {
+    double t = 0.0;
+    for (const ScriptLine& l : script) {
+      if (l.at >= 0.0) t = std::max(t, l.at);
+      if (l.kind == K::quit) {
+        until = t;
+        break;
+      }
+    }
+  }
+  const auto last = static_cast<std::int64_t>(std::llround(until / dt));
+  fo.frames = true;
+  FrameOutput pictures(out, fo, model.sim(), until);
+  pictures.observe(model.sim());
+  std::unique_ptr<render::GlContext> shot_context;
+  std::unique_ptr<render::Renderer> shot_renderer;
+  std::size_t next = 0;
+  bool quit = false;
+  for (;;) {
+    while (!quit && next < script.size()) {
+      const ScriptLine& l = script[next];
+      if (l.at >= 0.0 && std::llround(l.at / dt) > model.sim().steps()) break;
+      ++next;
+      switch (l.kind) {
+        case K::velocity:
+          model.set_velocity(l.number);
+          break;
+        case K::ideal:
+          model.set_ideal(l.number != 0.0);
+          break;
+        case K::quit:
+          quit = true;
+          break;
+        case K::screenshot: {
+          if (!shot_renderer) {
+            shot_context = render::make_context("osmesa", fo.width, fo.height);
+            shot_renderer = std::make_unique<render::Renderer>(*shot_context, fo.font);
+          }
+          Snapshot snap;
+          take_snapshot(model.sim(), snap);
+          render::write_png(l.text,
+                            shot_renderer->render_frame(snap, fo.look, fo.width, fo.height));
+          std::printf("wrote %s\n", l.text.c_str());
+          break;
+        }
+        default:
+          std::fprintf(stderr,
+                       "fluidbed view: headless: script line %d has no effect without a window\n",
+                       l.line);
+          break;
+      }
+    }
+    if (quit || model.sim().steps() >= last) break;
+    model.sim().step();
+    pictures.observe(model.sim());
+  }
+  const FrameStats st = pictures.finish();
+  std::printf("wrote %d frames to %s/frames (t = 0 to %.4g s)\n", st.frames, out.c_str(),
+              model.sim().time());
+  return 0;
+}
+
+}  // namespace
+
+int view_command(const ViewArgs& a) {
+  const std::string scene =
+      a.run_like.scene.empty() ? asset_dir() + "/scenes/teaching.toml" : a.run_like.scene;
+  if (!std::filesystem::exists(scene)) throw InputError("cannot read the scene " + scene);
+  Settings s = load_scene(scene, a.run_like.overrides);
+  s.threads = a.run_like.threads;
+  const std::vector<ScriptLine> script =
+      a.script.empty() ? std::vector<ScriptLine>{} : load_view_script(a.script);
+  const std::string out = a.out.empty() ? "out/view" : a.out;
+  FrameOptions fo = frame_options(with_run_names(a.output), asset_dir());
+
+  bool window = has_display();
+  if (!window) {
+    std::printf(
+        "fluidbed view: no display (DISPLAY and WAYLAND_DISPLAY are unset): writing headless "
+        "frames to %s/frames instead\n",
+        out.c_str());
+    std::fflush(stdout);
+    return view_headless(s, a, script, fo, out);
+  }
+
+  ViewEngine::Options eo;
+  eo.start_running = script.empty();  // a script starts paused and runs the bed itself
+  ViewEngine engine(s, eo);
+  ViewerOptions vo;
+  vo.width = fo.width;
+  vo.height = fo.height;
+  vo.font = fo.font;
+  vo.out_dir = out;
+  vo.look = fo.look;
+  vo.script = script;
+  std::unique_ptr<Viewer> viewer;
+  try {
+    viewer = std::make_unique<Viewer>(engine, vo);
+  } catch (const std::runtime_error& e) {
+    std::printf(
+        "fluidbed view: cannot open a window (%s): writing headless frames to %s/frames "
+        "instead\n",
+        e.what(), out.c_str());
+    std::fflush(stdout);
+    engine.stop();
+    return view_headless(s, a, script, fo, out);
+  }
+  engine.start();
+  const int status = viewer->run();
+  engine.stop();
+  const ViewerStats st = viewer->stats();
+  const EngineStatus es = engine.status();
+  viewer.reset();
+  std::printf("viewer: %d frames in %.2f s (%.1f frames/s, %.1f ms drawing each; %s)\n", st.frames,
+              st.seconds, st.seconds > 0.0 ? st.frames / st.seconds : 0.0, st.draw_ms,
+              st.gl_version.c_str());
+  if (st.engine_seconds > 0.0)
+    std::printf(
+        "engine beside the window: %lld steps in %.2f s running (%.0f steps/s, %.4g sim s per "
+        "wall s, %zu particles)\n",
+        static_cast<long long>(st.engine_steps), st.engine_seconds,
+        static_cast<double>(st.engine_steps) / st.engine_seconds,
+        static_cast<double>(st.engine_steps) * s.time.dt / st.engine_seconds, es.particles);
+  return status;
+}
+
+}  // namespace fluidbed::app

@@ -1,0 +1,106 @@
+#pragma once
+// Pictures and files of a run at exact simulated times: PNG frames, an MP4, a montage of chosen
+// times, VTK files for ParaView. The engine thread only copies a snapshot at each such time and
+// hands it over; one worker thread draws (it alone touches GL), encodes and writes. The queue
+// between them is bounded: no frame is ever dropped, and the engine waits only when the worker is
+// that many frames behind. Output never changes the physics: the run steps exactly as without it.
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "render/render_settings.hpp"
+#include "sim/simulation.hpp"
+#include "sim/snapshot.hpp"
+
+namespace fluidbed::app {
+
+struct FrameOptions {
+  bool frames = false;              // DIR/frames/frame_NNNNNN.png
+  bool video = false;               // DIR/video.mp4
+  bool vtk = false;                 // DIR/vtk/*.vtp, *.vti, particles.pvd, gas.pvd
+  std::vector<double> montage;      // s: DIR/montage.png with these times side by side
+  double interval = 0.04;           // s of simulated time between frames (25 per simulated s)
+  int width = 1280, height = 720;   // px, frames and video
+  double video_fps = 25.0;          // frames per second of the video
+  std::string backend = "osmesa";   // GL context backend
+  std::string font;                 // TrueType font file
+  int queue = 4;                    // snapshots the worker may be behind before the engine waits
+  render::RenderSettings look;
+
+  bool any() const { return frames || video || vtk || !montage.empty(); }
+  bool needs_gl() const { return frames || video || !montage.empty(); }
+};
+
+// Costs measured by the worker and the engine thread, for the report and the benchmark.
+struct FrameStats {
+  int frames = 0, vtk_files = 0;
+  double render_s = 0, png_s = 0, video_s = 0, vtk_s = 0;  // worker wall time by task
+  double snapshot_s = 0;  // engine thread: copying snapshots
+  double wait_s = 0;      // engine thread: waiting for room in the queue
+  std::string gl_version;
+};
+
+class FrameOutput {
+ public:
+  // Plans the output times of a run from the simulation's current step to `until` (s), starts
+  // the worker and waits until it is ready (GL context, shaders, font, ffmpeg). Throws InputError
+  // for bad options (unknown backend, montage time outside the run, odd video size), and what the
+  // worker could not start with.
+  FrameOutput(std::string out_dir, FrameOptions options, const Simulation& sim, double until);
+  ~FrameOutput();  // stops the worker if finish() was not called (files left incomplete)
+  FrameOutput(const FrameOutput&) = delete;
+  FrameOutput& operator=(const FrameOutput&) = delete;
+
+  // The run's per-step observer: takes a snapshot when this step is an output time. Also called
+  // once before the run for the starting state. Rethrows the worker's error, which ends the run.
+  void observe(const Simulation& sim);
+  // Waits for the worker to write everything (the video closed, the montage drawn) and reports.
+  FrameStats finish();
+
+ private:
+  struct Job {
+    std::shared_ptr<const Snapshot> snapshot;
+    bool frame = false, montage = false;
+    std::int64_t index = 0;  // frame number: round(t / interval)
+  };
+  struct Due {
+    std::int64_t step;
+    bool frame, montage;
+  };
+
+  void work();
+  void push(Job job);
+  void rethrow_if_failed();
+
+  std::string dir_;
+  FrameOptions opt_;
+  std::vector<Due> due_;  // output steps in order
+  std::size_t next_ = 0;
+  double dt_ = 0.0;
+  SnapshotChannel channel_;
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Job> jobs_;
+  bool closing_ = false, ready_ = false;
+  std::exception_ptr error_;
+  FrameStats stats_;
+  std::thread worker_;
+};
+
+// The options of `run` as FrameOptions (font from `assets`); InputError names a bad value.
+FrameOptions frame_options(const OutputArgs& a, const std::string& assets);
+
+// Prints what was written and its cost, and writes DIR/render.json (milliseconds per frame by
+// task, the engine thread's share, the GL version): the renderer's benchmark record.
+void report_frame_output(const std::string& dir, const OutputArgs& a, const FrameStats& stats,
+                         double run_wall_s);
+
+}  // namespace fluidbed::app

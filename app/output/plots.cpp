@@ -1,0 +1,184 @@
+#include "output/plots.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "chart/chart.hpp"
+#include "cli/commands.hpp"
+
+namespace fluidbed::app {
+namespace {
+
+const chart::Font& font() {
+  static const chart::Font f = chart::Font::load_default(asset_dir());
+  return f;
+}
+
+}  // namespace
+
+std::vector<int> nearest_particles(const Particles& p,
+                                   const std::vector<std::pair<double, double>>& at) {
+  std::vector<int> ids;
+  for (const auto& [x, y] : at) {
+    int best = 0;
+    double d2 = INFINITY;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double d = (p.x[i] - x) * (p.x[i] - x) + (p.y[i] - y) * (p.y[i] - y);
+      if (d < d2) {
+        d2 = d;
+        best = static_cast<int>(i);
+      }
+    }
+    ids.push_back(best);
+  }
+  return ids;
+}
+
+std::vector<std::pair<double, double>> jet_region_points(double width) {
+  return {{0.5 * width, 0.02}, {0.5 * width, 0.06}};
+}
+
+TrajectoryRecorder::TrajectoryRecorder(const std::vector<int>& ids, double interval, double dt)
+    : every_(std::max<std::int64_t>(1, std::llround(interval / dt))) {
+  for (int id : ids) tracks_.push_back({id, {}, {}, {}});
+}
+
+void TrajectoryRecorder::observe(const Simulation& sim) {
+  if (sim.steps() % every_ != 0) return;
+  const Particles& p = sim.dem().particles();
+  for (auto& tr : tracks_) {
+    tr.t.push_back(sim.time());
+    tr.x.push_back(p.x[tr.id]);
+    tr.y.push_back(p.y[tr.id]);
+  }
+}
+
+void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene) {
+  chart::Chart c;
+  c.title = "Bed pressure drop against superficial gas velocity (" + scene + ")";
+  c.x.label = "superficial gas velocity U (m/s)";
+  c.y.label = "mean bed pressure drop (Pa)";
+  c.x.min = 0.0;
+  c.y.min = 0.0;
+  auto branch = [](const std::vector<SweepPoint>& pts, const char* label) {
+    chart::Series s;
+    s.label = label;
+    s.mark = chart::Mark::LinePoints;
+    for (const auto& p : pts) {
+      if (!p.ok) continue;
+      s.x.push_back(p.u);
+      s.y.push_back(p.dp_mean);
+      s.y_error.push_back(p.dp_std);
+    }
+    return s;
+  };
+  chart::Series up = branch(r.up, "increasing U (from the packed bed)");
+  std::vector<SweepPoint> down = r.down;
+  if (!r.up.empty()) down.push_back(r.up.back());  // the shared top run closes the branch
+  chart::Series dn = branch(down, "decreasing U (from the run above)");
+  dn.dashed = true;
+  dn.filled = false;
+  dn.shape = chart::Shape::Square;
+  c.series = {up, dn};
+  c.hlines.push_back({r.bed_weight_per_area, "bed weight / area", {90, 90, 90}, true, 1.5});
+  if (r.umf.ok) {
+    char label[64];
+    std::snprintf(label, sizeof label, "Umf = %.2f m/s", r.umf.umf);
+    c.vlines.push_back({r.umf.umf, label, chart::palette(1), true, 1.5});
+  }
+  chart::render(c, 1200, 750, font()).write_png(path);
+}
+
+std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
+                                  const std::vector<Trajectory>& tracks, double width,
+                                  double height, bool has_gas) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> written;
+  std::vector<double> t, dp, overlap;
+  for (const auto& row : r.rows) {
+    t.push_back(row.t);
+    dp.push_back(row.dp);
+    overlap.push_back(100.0 * row.max_overlap_ratio);
+  }
+  const double start = r.summary.value("averaging_start_s", 0.0);
+  if (has_gas) {
+    chart::Chart c;
+    c.title = "Bed pressure drop against time (Fig. 8)";
+    c.x.label = "time (s)";
+    c.y.label = "pressure drop (Pa)";
+    c.legend = false;
+    chart::Series s;
+    s.x = t;
+    s.y = dp;
+    s.width = 1.2;
+    c.series = {s};
+    c.hlines.push_back({r.summary.value("bed_weight_per_area_pa", 0.0), "bed weight / area",
+                        {90, 90, 90}, true, 1.5});
+    if (r.summary.contains("dp_mean_pa") && r.summary["dp_mean_pa"].is_number())
+      c.hlines.push_back({r.summary["dp_mean_pa"].get<double>(), "mean after start-up (eq 30)",
+                          chart::palette(1), true, 1.5});
+    c.vlines.push_back({start, "averaging start", {150, 150, 150}, true, 1.0});
+    const auto p = (fs::path(dir) / "dp.png").string();
+    chart::render(c, 1200, 600, font()).write_png(p);
+    written.push_back(p);
+  }
+  {
+    chart::Chart c;
+    c.title = "Maximum overlap ratio against time (Fig. 15)";
+    c.x.label = "time (s)";
+    c.y.label = "max overlap ratio (%)";
+    c.y.min = 0.0;
+    c.legend = false;
+    chart::Series s;
+    s.x = t;
+    s.y = overlap;
+    s.width = 1.2;
+    c.series = {s};
+    c.hlines.push_back({1.0, "1 %", {150, 150, 150}, true, 1.0});
+    const auto p = (fs::path(dir) / "overlap.png").string();
+    chart::render(c, 1200, 600, font()).write_png(p);
+    written.push_back(p);
+  }
+  if (!tracks.empty()) {
+    chart::Chart path, xs, ys;
+    path.title = "Tracked particle paths (Fig. 12)";
+    path.x.label = "x (m)";
+    path.y.label = "y (m)";
+    path.x.min = 0.0;
+    path.x.max = width;
+    path.y.min = 0.0;
+    path.y.max = height;
+    path.equal_aspect = true;
+    xs.title = "x against time (Fig. 13)";
+    xs.x.label = "time (s)";
+    xs.y.label = "x (m)";
+    ys.title = "y against time (Fig. 13)";
+    ys.x.label = "time (s)";
+    ys.y.label = "y (m)";
+    for (const auto& tr : tracks) {
+      const std::string label = "particle " + std::to_string(tr.id);
+      chart::Series a;
+      a.label = label;
+      a.x = tr.x;
+      a.y = tr.y;
+      a.width = 1.0;
+      path.series.push_back(a);
+      chart::Series b = a;
+      b.x = tr.t;
+      b.y = tr.x;
+      xs.series.push_back(b);
+      chart::Series c = a;
+      c.x = tr.t;
+      c.y = tr.y;
+      ys.series.push_back(c);
+    }
+    const auto p = (fs::path(dir) / "trajectory.png").string();
+    chart::render_grid({path, xs, ys}, 3, 600, 900, font(), "Particles starting in the jet region")
+        .write_png(p);
+    written.push_back(p);
+  }
+  return written;
+}
+
+}  // namespace fluidbed::app

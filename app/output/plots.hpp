@@ -1,0 +1,50 @@
+#pragma once
+// The figures the program draws itself (PNG, through chart.hpp): the sweep (Fig. 6), and from a
+// single run dp against time (Fig. 8), the maximum overlap ratio against time (Fig. 15) and the
+// trajectories of tracked particles (Figs 12-13).
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "run/run.hpp"
+#include "run/sweep.hpp"
+#include "sim/simulation.hpp"
+
+namespace fluidbed::app {
+
+// Positions of one tracked particle at each recorded time.
+struct Trajectory {
+  int id = 0;
+  std::vector<double> t, x, y;  // s, m, m
+};
+
+// The particles nearest to the given points (m) at the start of a run.
+std::vector<int> nearest_particles(const Particles& p,
+                                   const std::vector<std::pair<double, double>>& at);
+// The default tracked particles: two starting in the jet region (the paper's Figs 12-13).
+std::vector<std::pair<double, double>> jet_region_points(double width);
+
+// Records tracked particles' positions every `interval` seconds of simulated time.
+class TrajectoryRecorder {
+ public:
+  TrajectoryRecorder(const std::vector<int>& ids, double interval, double dt);
+  void observe(const Simulation& sim);
+  const std::vector<Trajectory>& tracks() const { return tracks_; }
+
+ private:
+  std::vector<Trajectory> tracks_;
+  std::int64_t every_;
+};
+
+void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene);
+// sweep.csv, summary.json (with umf_m_s) and sweep.png in the sweep's output folder.
+void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene);
+
+// Writes DIR/dp.png (when the run has gas), DIR/overlap.png and, for each trajectory,
+// DIR/trajectory.png (path in the bed, x and y against time). Returns the files written.
+std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
+                                  const std::vector<Trajectory>& tracks, double width,
+                                  double height, bool has_gas);
+
+}  // namespace fluidbed::app

@@ -1,0 +1,235 @@
+// What the studies share: the registry, the point runner, the CSV table, charts and the bed.
+#include <time.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "cli/commands.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "scene/scene_loader.hpp"
+#include "sim/simulation.hpp"
+#include "studies/study.hpp"
+
+namespace fluidbed::app::study {
+namespace fs = std::filesystem;
+
+const std::vector<Info>& all_studies() {
+  static const std::vector<Info> list = {
+      {"integrators",
+       "Integrators and time step: drop test, restitution, energy of a packing at rest, cost",
+       "about 4 min", "about 20 s", integrators_study},
+      {"contact",
+       "Contact displacement: incremental with backward projection (eqs 13-17) against the "
+       "geometric overlap",
+       "about 3 min", "about 15 s", contact_study},
+      {"stiffness", "Stiffness: the paper's 50,000 N/m against Tsuji's 800 N/m",
+       "about 3 min (2 x 0.8 s packing, 1.5 s bed)", "about 10 s", stiffness_study},
+      {"coupling",
+       "Coupling: particle steps per gas step, gas grid, SIMPLE tolerance; error against cost",
+       "about 10 min (12 runs of 1.5 s of the paper's bed)", "about 20 s", coupling_study},
+      {"modules", "What each physics module costs, and that scenes without it do not pay",
+       "about 30 s", "a few s", modules_study},
+      {"model-form",
+       "Model form: model A (drag and -V grad p) against the paper's printed form (drag alone)",
+       "about 20 min (two sweeps, 7 and 9 velocities, 1 s each)", "about 20 s", model_form_study},
+      {"failures", "Failure detection: every way a study's run can fail, reported in words",
+       "under a minute", "under a second", failures_study},
+  };
+  return list;
+}
+
+const Info* find_study(const std::string& name) {
+  for (const Info& i : all_studies())
+    if (name == i.name) return &i;
+  return nullptr;
+}
+
+Report run_study(const Info& info, const Options& o) {
+  if (o.out.empty()) throw InputError("study: an output folder is needed (--out)");
+  std::error_code ec;
+  fs::create_directories(o.out, ec);
+  if (ec) throw InputError("cannot create output folder " + o.out + ": " + ec.message());
+  const auto start = std::chrono::steady_clock::now();
+  Report r = info.run(o);
+  r.name = info.name;
+  r.title = info.title;
+  r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::string md = "# Study `" + r.name + "`: " + r.title + "\n\n";
+  md += "Made by `fluidbed study " + r.name +
+        (o.size == Size::Tiny ? " --size tiny" : "") + "` in " + fmt("%.0f s", r.wall_time) +
+        " on " + std::to_string(resolve_workers(o.workers)) + " worker thread(s); " +
+        std::to_string(r.points) + " points, " + std::to_string(r.failed) +
+        " of them failed runs (recorded in study.csv with the reason). Every number is measured "
+        "by this run.\n\n";
+  md += r.findings + "\n";
+  md += "## What to choose\n\n" + r.advice + "\n\n## Charts\n\n";
+  for (const auto& c : r.charts) md += "![" + c + "](" + c + ")\n\n";
+  write_text((fs::path(o.out) / "summary.md").string(), md);
+  return r;
+}
+
+double paper_particle_mass() { return 2700.0 * kPi * 0.004 * 0.004 * 0.004 / 6.0; }
+
+double contact_duration(double stiffness, double mass) {
+  return kPi * std::sqrt(mass / stiffness);
+}
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+int resolve_workers(int requested) {
+  if (requested > 0) return requested;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+PointRun run_point(const Settings& s, double until, RunOptions options) {
+  PointRun p;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    Simulation sim(s);
+    options.until = until;
+    const double cpu0 = thread_cpu_seconds();
+    p.result = run_simulation(sim, options);
+    p.cpu = thread_cpu_seconds() - cpu0;
+    p.ok = true;
+  } catch (const SimulationFailure& e) {
+    p.error = e.what();
+    p.kind = failure_kind(p.error);
+  }
+  p.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return p;
+}
+
+std::string failure_kind(const std::string& m) {
+  auto has = [&](const char* w) { return m.find(w) != std::string::npos; };
+  if (has("CFL")) return "cfl";
+  if (has("porosity")) return "porosity";
+  if (has("SIMPLE") || has("positive definite")) return "simple";
+  if (has("NaN") || has("not finite") || has("overflowed")) return "nan";
+  if (has("overlap")) return "overlap";
+  if (has("left the bed")) return "left_bed";
+  if (has("energy")) return "energy";
+  return "other";
+}
+
+double fixed_bed_force_ratio(const Settings& fixed, double U, double time, double& dp) {
+  Settings s = fixed;
+  s.inlet.superficial_velocity = U;
+  Simulation sim(s);
+  RunOptions opt;
+  opt.until = time;
+  run_simulation(sim, opt);
+  const Particles& p = sim.dem().particles();
+  double f = 0.0, m = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    f += p.ext_fy[i];
+    m += p.mass[i];
+  }
+  dp = sim.pressure_drop();
+  return f / (m * s.physics.gravity);
+}
+
+double fixed_bed_umf(const Settings& fixed, double lo, double hi, double time, double& dp_lo) {
+  double dp = 0.0;
+  double flo = fixed_bed_force_ratio(fixed, lo, time, dp_lo) - 1.0;
+  double fhi = fixed_bed_force_ratio(fixed, hi, time, dp) - 1.0;
+  for (int k = 0; k < 8 && std::fabs(hi - lo) > 0.002; ++k) {
+    const double mid = hi - fhi * (hi - lo) / (fhi - flo);
+    const double fm = fixed_bed_force_ratio(fixed, mid, time, dp) - 1.0;
+    if ((fm < 0.0) == (flo < 0.0)) {
+      lo = mid;
+      flo = fm;
+    } else {
+      hi = mid;
+      fhi = fm;
+    }
+  }
+  return hi - fhi * (hi - lo) / (fhi - flo);
+}
+
+Settings bed_scene(Size size, const std::vector<std::string>& overrides) {
+  std::vector<std::string> all;
+  if (size == Size::Tiny)
+    all = {"domain.width=0.06",        "domain.height=0.3",      "particles.count=300",
+           "particles.fill_height=0.12", "particles.packing_time=0.3", "gas.cells_x=6",
+           "gas.cells_y=15"};
+  all.insert(all.end(), overrides.begin(), overrides.end());
+  return load_scene(asset_dir() + "/scenes/xu_yu_1997.toml", all);
+}
+
+void Table::add(const std::vector<std::string>& row) {
+  if (row.size() != columns_.size())
+    throw std::logic_error("study table: a row of " + std::to_string(row.size()) +
+                           " values for " + std::to_string(columns_.size()) + " columns");
+  rows_.push_back(row);
+}
+
+std::string Table::csv() const {
+  std::string out;
+  auto line = [&](const std::vector<std::string>& v) {
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      if (k) out += ',';
+      out += csv_text(v[k]);
+    }
+    out += "\n";
+  };
+  line(columns_);
+  for (const auto& r : rows_) line(r);
+  return out;
+}
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+std::string fmt(const char* format, double v) {
+  char b[128];
+  std::snprintf(b, sizeof b, format, v);
+  return b;
+}
+
+std::string csv_text(std::string s) {
+  for (char& c : s)
+    if (c == '\n') c = ' ';
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](std::ostream& o) { o << text; });
+}
+
+namespace {
+const chart::Font& font() {
+  static const chart::Font f = chart::Font::load_default(asset_dir());
+  return f;
+}
+}  // namespace
+
+std::string write_chart(const std::string& dir, const std::string& file, const chart::Chart& c,
+                        int width, int height) {
+  chart::render(c, width, height, font()).write_png((fs::path(dir) / file).string());
+  return file;
+}
+
+std::string write_grid(const std::string& dir, const std::string& file,
+                       const std::vector<chart::Chart>& charts, int columns, int panel_w,
+                       int panel_h, const std::string& title) {
+  chart::render_grid(charts, columns, panel_w, panel_h, font(), title)
+      .write_png((fs::path(dir) / file).string());
+  return file;
+}
+
+}  // namespace fluidbed::app::study

@@ -1,0 +1,536 @@
+#include "view/window.hpp"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+#include "render/image.hpp"
+
+namespace fluidbed::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+constexpr double kRecordFps = 25.0;        // frames per second of recordings (wall-clock time)
+constexpr double kMaxFramePixels = 4.0e6;  // zoomed frames are drawn at most this large
+constexpr std::size_t kPlotPoints = 4000;  // samples kept for the plots
+constexpr std::size_t kTrajectoryPoints = 20000;
+
+// The window as shown (the back buffer, after the panel was drawn), rows from the top.
+render::Image read_window(const render::GlContext& context) {
+  const auto& gl = context.gl();
+  render::Image img;
+  img.width = context.width();
+  img.height = context.height();
+  std::vector<std::uint8_t> rgba(static_cast<std::size_t>(img.width) *
+                                 static_cast<std::size_t>(img.height) * 4);
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  gl.ReadBuffer(GL_BACK);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl.ReadPixels(0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  img.rgb.resize(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height) * 3);
+  for (int y = 0; y < img.height; ++y) {
+    const std::uint8_t* src = rgba.data() + static_cast<std::size_t>(img.height - 1 - y) *
+                                                static_cast<std::size_t>(img.width) * 4;
+    std::uint8_t* dst =
+        img.rgb.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(img.width) * 3;
+    for (int x = 0; x < img.width; ++x, src += 4, dst += 3) {
+      dst[0] = src[0];
+      dst[1] = src[1];
+      dst[2] = src[2];
+    }
+  }
+  return img;
+}
+
+// `img` cut or padded (black) to w x h: a recording keeps the size it started with.
+render::Image fit(const render::Image& img, int w, int h) {
+  if (img.width == w && img.height == h) return img;
+  render::Image out;
+  out.width = w;
+  out.height = h;
+  out.rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 0);
+  for (int y = 0; y < std::min(h, img.height); ++y)
+    std::copy_n(img.pixel(0, y), static_cast<std::size_t>(std::min(w, img.width)) * 3,
+                out.rgb.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3);
+  return out;
+}
+
+template <class T>
+void keep_last(std::vector<T>& v, std::size_t n) {
+  if (v.size() > n + n / 4) v.erase(v.begin(), v.end() - static_cast<std::ptrdiff_t>(n));
+}
+
+}  // namespace
+
+Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
+    : engine_(engine), opt_(std::move(options)), look_(opt_.look) {
+  context_ = render::make_context("glfw", opt_.width, opt_.height);
+  renderer_ = std::make_unique<render::Renderer>(*context_, opt_.font);
+  stats_.gl_version = context_->version_string();
+  auto* window = static_cast<GLFWwindow*>(context_->native_window());
+  glfwSetWindowTitle(window, "fluidbed view");
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // no imgui.ini in the user's folder
+  io.Fonts->AddFontFromFileTTF(opt_.font.c_str(), 15.0f);
+  ImGui::StyleColorsDark();
+  ImGui::GetStyle().WindowRounding = 0.0f;
+  imgui_glfw_ = ImGui_ImplGlfw_InitForOpenGL(window, true);
+  // Dear ImGui's OpenGL 3 backend loads its own entry points (its gl3w, through libGL.so.1) for
+  // the same context; the renderer keeps using its glad table.
+  imgui_gl_ = imgui_glfw_ && ImGui_ImplOpenGL3_Init("#version 330 core");
+  if (!imgui_gl_) {
+    if (imgui_glfw_) ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    throw std::runtime_error("the panel (Dear ImGui) could not start on this GL context");
+  }
+  if (!opt_.script.empty()) {
+    settle_frames_ = 0;
+    script_wants_running_ = true;
+  }
+}
+
+Viewer::~Viewer() {
+  try {
+    stop_recording();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fluidbed view: %s\n", e.what());
+  }
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  renderer_.reset();
+  context_.reset();
+}
+
+void Viewer::post(const ViewCommand& c) {
+  engine_.post(c);
+}
+
+int Viewer::run() {
+  t0_ = last_status_t_ = Clock::now();
+  while (!quit_ && !context_->should_close()) frame();
+  stats_.seconds = seconds_between(t0_, Clock::now());
+  stats_.draw_ms = stats_.frames > 0 ? 1000.0 * draw_seconds_ / stats_.frames : 0.0;
+  return exit_status_;
+}
+
+void Viewer::take_newest() {
+  std::uint64_t seq = 0;
+  auto s = engine_.snapshots().latest(&seq);
+  const EngineStatus st = engine_.status();
+  // Engine speed while the window is open (the benchmark): steps over the time it was stepping.
+  const auto now = Clock::now();
+  if (last_running_ && st.stepping) {
+    stats_.engine_steps += st.steps - last_status_steps_;
+    stats_.engine_seconds += seconds_between(last_status_t_, now);
+  }
+  last_running_ = st.stepping;
+  last_status_steps_ = st.steps;
+  last_status_t_ = now;
+  if (st.generation != plot_generation_) {
+    plot_generation_ = st.generation;
+    plot_t_.clear();
+    plot_dp_.clear();
+    plot_overlap_.clear();
+    trajectory_.clear();
+    trajectory_step_ = -1;
+  }
+  for (const PlotSample& p : engine_.take_samples()) {
+    plot_t_.push_back(static_cast<float>(p.t));
+    plot_dp_.push_back(static_cast<float>(p.dp));
+    plot_overlap_.push_back(static_cast<float>(p.max_overlap));
+  }
+  keep_last(plot_t_, kPlotPoints);
+  keep_last(plot_dp_, kPlotPoints);
+  keep_last(plot_overlap_, kPlotPoints);
+  status_ = st;
+  if (s && seq != snap_seq_) {
+    snap_ = std::move(s);
+    snap_seq_ = seq;
+    if (tracked_ >= 0 && static_cast<std::size_t>(tracked_) < snap_->particles() &&
+        snap_->step != trajectory_step_) {
+      if (snap_->step < trajectory_step_) trajectory_.clear();
+      trajectory_.emplace_back(snap_->x[static_cast<std::size_t>(tracked_)],
+                               snap_->y[static_cast<std::size_t>(tracked_)]);
+      trajectory_step_ = snap_->step;
+      keep_last(trajectory_, kTrajectoryPoints);
+    }
+  }
+}
+
+void Viewer::frame() {
+  const auto t_start = Clock::now();
+  take_newest();
+  if (!opt_.script.empty() && !status_.error.empty() && exit_status_ == 0) {
+    std::fprintf(stderr, "fluidbed: %s\n", status_.error.c_str());
+    exit_status_ = 3;
+    quit_ = true;
+    return;
+  }
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  step_script();
+
+  // Where the bed goes, and how large its frame is drawn (larger when zoomed, up to a limit).
+  const ImGuiIO& io = ImGui::GetIO();
+  area_ = {panel_width_, 0.0f, std::max(panel_width_ + 16.0f, io.DisplaySize.x),
+           std::max(16.0f, io.DisplaySize.y)};
+  const double fb_scale = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0;
+  const double aw = area_.width() * fb_scale, ah = area_.height() * fb_scale;
+  const double magnify =
+      std::max(1.0, std::min(view_.zoom, std::sqrt(kMaxFramePixels / (aw * ah))));
+  frame_w_ = std::max(16, static_cast<int>(std::lround(aw * magnify)));
+  frame_h_ = std::max(16, static_cast<int>(std::lround(ah * magnify)));
+  if (snap_) layout_ = render::frame_layout(*snap_, frame_w_, frame_h_, look_.close_up);
+
+  handle_scene_input();
+  draw_panel();
+  draw_overlays();
+  ImGui::Render();
+  draw_scene();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  capture_if_requested();
+  draw_seconds_ += seconds_between(t_start, Clock::now());
+  context_->present();  // swaps and polls events
+  ++stats_.frames;
+}
+
+void Viewer::draw_scene() {
+  const auto& gl = context_->gl();
+  const int fbw = context_->width(), fbh = context_->height();
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.Viewport(0, 0, fbw, fbh);
+  gl.ClearColor(0.96f, 0.96f, 0.95f, 1.0f);
+  gl.Clear(GL_COLOR_BUFFER_BIT);
+  if (snap_) {
+    renderer_->draw_frame(*snap_, look_, frame_w_, frame_h_);
+    const ImGuiIO& io = ImGui::GetIO();
+    const float sx = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
+    const float sy = io.DisplayFramebufferScale.y > 0.0f ? io.DisplayFramebufferScale.y : 1.0f;
+    const render::Rect dst{area_.x0 * sx, area_.y0 * sy, area_.x1 * sx, area_.y1 * sy};
+    renderer_->blit_region_to_default(render::visible_rect(view_, frame_w_, frame_h_), dst, fbh);
+  }
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.Viewport(0, 0, fbw, fbh);
+}
+
+void Viewer::handle_scene_input() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) toggle_run();
+    if (ImGui::IsKeyPressed(GLFW_KEY_S)) post({ViewCommand::Kind::step, 1.0});
+    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) post({ViewCommand::Kind::reset, 0.0});
+    if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) cycle_colour();
+  }
+  hovered_.reset();
+  const ImVec2 m = io.MousePos;
+  const bool inside = m.x >= area_.x0 && m.x < area_.x1 && m.y >= area_.y0 && m.y < area_.y1;
+  // A pointer that never moved (a virtual display, a scripted demo) points at nothing.
+  if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) mouse_moved_ = true;
+  if (io.WantCaptureMouse || !inside || !snap_ || !mouse_moved_) return;
+  const double u = (m.x - area_.x0) / area_.width(), v = (m.y - area_.y0) / area_.height();
+  if (io.MouseWheel != 0.0f)
+    view_.zoom_about(std::pow(1.2, static_cast<double>(io.MouseWheel)), u, v);
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) ||
+      ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
+    const ImVec2 d = io.MouseDelta;
+    view_.pan_by(d.x / area_.width(), d.y / area_.height());
+    return;
+  }
+  double fx = 0.0, fy = 0.0;
+  render::window_to_frame(view_, area_, frame_w_, frame_h_, m.x, m.y, fx, fy);
+  hovered_ = render::pick_particle(*snap_, layout_, fx, fy);
+  // A click (no drag) picks the particle to track; a click on nothing stops tracking.
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
+      ImGui::GetMouseDragDelta(ImGuiMouseButton_Left, 0.0f).x == 0.0f &&
+      ImGui::GetMouseDragDelta(ImGuiMouseButton_Left, 0.0f).y == 0.0f) {
+    tracked_ = hovered_ ? static_cast<long>(*hovered_) : -1;
+    trajectory_.clear();
+    trajectory_step_ = -1;
+  }
+  if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Right)) view_ = {};
+  if (hovered_) {
+    ImGui::BeginTooltip();
+    draw_particle_info(*hovered_, true);
+    ImGui::EndTooltip();
+  }
+}
+
+void Viewer::draw_overlays() {
+  if (!snap_ || layout_.beds.empty()) return;
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const render::Rect v = render::visible_rect(view_, frame_w_, frame_h_);
+  const double px_per_frame_px = area_.width() / v.width();
+  dl->PushClipRect(ImVec2(area_.x0, area_.y0), ImVec2(area_.x1, area_.y1), true);
+  const auto to_window = [&](double x, double y) {
+    double fx = 0.0, fy = 0.0, wx = 0.0, wy = 0.0;
+    render::world_to_frame(layout_, x, y, fx, fy);
+    render::frame_to_window(view_, area_, frame_w_, frame_h_, fx, fy, wx, wy);
+    return ImVec2(static_cast<float>(wx), static_cast<float>(wy));
+  };
+  const double scale = layout_.beds.front().scale * px_per_frame_px;  // window px per m
+  if (tracked_ >= 0 && static_cast<std::size_t>(tracked_) < snap_->particles()) {
+    std::vector<ImVec2> pts;
+    pts.reserve(trajectory_.size());
+    for (const auto& [x, y] : trajectory_) pts.push_back(to_window(x, y));
+    if (pts.size() > 1)
+      dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), IM_COL32(220, 30, 30, 230), 0,
+                      2.0f);
+    const auto i = static_cast<std::size_t>(tracked_);
+    dl->AddCircle(to_window(snap_->x[i], snap_->y[i]),
+                  std::max(4.0f, static_cast<float>(snap_->radius[i] * scale) + 2.0f),
+                  IM_COL32(220, 30, 30, 255), 0, 2.5f);
+  }
+  if (hovered_) {
+    const std::size_t i = *hovered_;
+    dl->AddCircle(to_window(snap_->x[i], snap_->y[i]),
+                  std::max(4.0f, static_cast<float>(snap_->radius[i] * scale) + 1.5f),
+                  IM_COL32(255, 255, 255, 255), 0, 2.0f);
+  }
+  dl->PopClipRect();
+}
+
+void Viewer::toggle_run() {
+  post({status_.running ? ViewCommand::Kind::pause : ViewCommand::Kind::run, 0.0});
+}
+
+void Viewer::cycle_colour() {
+  using render::ColourBy;
+  static constexpr ColourBy order[] = {ColourBy::speed, ColourBy::force, ColourBy::torque,
+                                       ColourBy::overlap, ColourBy::height};
+  std::size_t k = 0;
+  while (k < std::size(order) && order[k] != look_.colour_by) ++k;
+  look_.colour_by = order[(k + 1) % std::size(order)];
+  look_.range_min = look_.range_max = 0.0;  // the new quantity's own range
+}
+
+std::string Viewer::next_name(const std::string& stem, const std::string& ext) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(opt_.out_dir, ec);
+  for (;;) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s_%03d%s", stem.c_str(), ++counter_, ext.c_str());
+    const fs::path p = fs::path(opt_.out_dir) / name;
+    if (!fs::exists(p, ec)) return p.string();
+  }
+}
+
+void Viewer::capture_if_requested() {
+  const bool recording = video_ || !record_dir_.empty();
+  if (screenshot_requests_.empty() && !recording) return;
+  if (!screenshot_requests_.empty() && settle_frames_ > 0) {
+    --settle_frames_;
+    if (!recording) return;
+  }
+  const render::Image img = read_window(*context_);
+  if (!screenshot_requests_.empty() && settle_frames_ <= 0) {
+    for (const std::string& path : screenshot_requests_) {
+      try {
+        const auto parent = std::filesystem::path(path).parent_path();
+        std::error_code ec;
+        if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+        render::write_png(path, img);
+        message_ = "wrote " + path;
+        std::printf("wrote %s\n", path.c_str());
+      } catch (const std::exception& e) {
+        message_ = e.what();
+        if (!opt_.script.empty()) {
+          std::fprintf(stderr, "fluidbed: output failed: %s\n", e.what());
+          exit_status_ = 4;
+          quit_ = true;
+        }
+      }
+    }
+    screenshot_requests_.clear();
+  }
+  if (!recording) return;
+  // Frames at a steady 25 per wall second: repeated when drawing is slower, skipped when faster,
+  // so the video plays at the speed the class saw.
+  const double elapsed = seconds_between(record_t0_, Clock::now());
+  const int due = static_cast<int>(std::floor(elapsed * kRecordFps)) + 1;
+  try {
+    if (video_) {
+      const render::Image f = fit(img, record_frames_w_, record_frames_h_);
+      for (int n = 0; record_frames_ < due && n < 8; ++n, ++record_frames_) video_->write(f);
+      record_frames_ = std::max(record_frames_, due);
+    } else if (record_frames_ < due) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%06d.png", record_frames_);
+      render::write_png((std::filesystem::path(record_dir_) / name).string(), img);
+      record_frames_ = due;
+    }
+  } catch (const std::exception& e) {
+    message_ = std::string("recording stopped: ") + e.what();
+    video_.reset();
+    record_dir_.clear();
+  }
+}
+
+void Viewer::start_recording(const std::string& target) {
+  stop_recording();
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const bool mp4 = fs::path(target).extension() == ".mp4";
+  record_frames_ = 0;
+  record_t0_ = Clock::now();
+  record_target_ = target;
+  if (mp4) {
+    if (fs::path(target).has_parent_path())
+      fs::create_directories(fs::path(target).parent_path(), ec);
+    record_frames_w_ = context_->width() & ~1;
+    record_frames_h_ = context_->height() & ~1;
+    video_ = std::make_unique<render::VideoWriter>(target, record_frames_w_, record_frames_h_,
+                                                   kRecordFps);
+  } else {
+    fs::create_directories(target, ec);
+    if (ec) throw InputError("cannot create the recording folder " + target + ": " + ec.message());
+    record_dir_ = target;
+  }
+  message_ = "recording to " + target;
+}
+
+void Viewer::stop_recording() {
+  if (video_) {
+    auto v = std::move(video_);
+    v->close();
+    message_ = "wrote " + record_target_ + " (" + std::to_string(v->frames()) + " frames)";
+    std::printf("%s\n", message_.c_str());
+  } else if (!record_dir_.empty()) {
+    message_ = "wrote " + std::to_string(record_frames_) + " frames to " + record_dir_;
+    std::printf("%s\n", message_.c_str());
+    record_dir_.clear();
+  }
+}
+
+// The script: one line after the other; `at T` first runs the engine to T and waits for it.
+void Viewer::step_script() {
+  const auto& lines = opt_.script;
+  using K = ScriptLine::Kind;
+  while (!quit_ && script_next_ < lines.size()) {
+    if (script_waiting_engine_) {
+      if (!engine_.wait_until_stopped(std::chrono::milliseconds(0))) return;
+      script_waiting_engine_ = false;
+      take_newest();  // the state where it stopped
+    }
+    if (script_wait_until_) {
+      if (Clock::now() < *script_wait_until_) return;
+      script_wait_until_.reset();
+      post({ViewCommand::Kind::pause, 0.0});
+      script_waiting_engine_ = true;
+      continue;
+    }
+    if (!screenshot_requests_.empty()) return;  // drawn and written first
+    const ScriptLine& l = lines[script_next_];
+    if (l.at >= 0.0 && !script_at_done_) {
+      script_at_done_ = true;
+      post({ViewCommand::Kind::run_until, l.at});
+      script_waiting_engine_ = true;
+      continue;
+    }
+    script_at_done_ = false;
+    ++script_next_;
+    switch (l.kind) {
+      case K::velocity:
+        velocity_ = static_cast<float>(l.number);
+        post({ViewCommand::Kind::velocity, l.number});
+        break;
+      case K::ideal:
+        post({ViewCommand::Kind::ideal, l.number});
+        script_waiting_engine_ = true;
+        break;
+      case K::run:
+        script_wants_running_ = true;
+        break;
+      case K::pause:
+        script_wants_running_ = false;
+        break;
+      case K::step:
+        post({ViewCommand::Kind::step, l.number});
+        script_waiting_engine_ = true;
+        break;
+      case K::reset:
+        post({ViewCommand::Kind::reset, 0.0});
+        script_waiting_engine_ = true;
+        break;
+      case K::wait:
+        if (script_wants_running_) post({ViewCommand::Kind::run, 0.0});
+        script_wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                std::chrono::duration<double>(l.number));
+        break;
+      case K::colour:
+        look_.colour_by =
+            l.text == "mixing" ? render::ColourBy::height : render::parse_colour_by(l.text);
+        look_.range_min = look_.range_max = 0.0;
+        break;
+      case K::gas_arrows:
+        look_.gas_arrows = l.number != 0.0;
+        break;
+      case K::particle_arrows:
+        look_.particle_arrows = l.number != 0.0;
+        break;
+      case K::porosity:
+        look_.porosity_background = l.number != 0.0;
+        break;
+      case K::track:
+        if (snap_ && l.number >= static_cast<double>(snap_->particles())) {
+          std::fprintf(stderr, "fluidbed: error: script line %d: no particle %.0f (0 to %zu)\n",
+                       l.line, l.number, snap_->particles() - 1);
+          exit_status_ = 2;
+          quit_ = true;
+          return;
+        }
+        tracked_ = static_cast<long>(l.number);
+        trajectory_.clear();
+        trajectory_step_ = -1;
+        break;
+      case K::zoom:
+        view_.zoom = l.number;
+        view_.clamp();
+        break;
+      case K::screenshot:
+        screenshot_requests_.push_back(l.text);
+        settle_frames_ = 2;  // ImGui lays a changed panel out over a frame or two
+        break;
+      case K::record:
+        try {
+          start_recording(l.text);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "fluidbed: output failed: %s\n", e.what());
+          exit_status_ = 4;
+          quit_ = true;
+          return;
+        }
+        break;
+      case K::record_stop:
+        stop_recording();
+        break;
+      case K::quit:
+        quit_ = true;
+        return;
+    }
+  }
+  if (!script_finished_ && script_next_ >= lines.size() && !script_waiting_engine_ &&
+      !lines.empty()) {
+    script_finished_ = true;
+    if (script_wants_running_) post({ViewCommand::Kind::run, 0.0});
+  }
+}
+
+}  // namespace fluidbed::app
