@@ -1,0 +1,34 @@
+#include "cli/progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <utility>
+
+namespace fluidbed::app {
+namespace {
+
+void print_progress(const Simulation& sim, double wall, double until) {
+  const double t = sim.time();
+  const double steps = static_cast<double>(sim.steps());
+  std::fprintf(stderr, "\r  t = %.4f / %.4f s   %.3g wall s per sim s   %.3g particle-steps/s   ",
+               t, until, t > 0.0 ? wall / t : 0.0,
+               wall > 0.0 ? steps * static_cast<double>(sim.particle_count()) / wall : 0.0);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+RunResult run_with_progress(Simulation& sim, double until,
+                            std::function<void(const Simulation&)> on_step) {
+  RunOptions opt;
+  opt.until = until;
+  opt.on_step = std::move(on_step);
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  if (terminal) opt.progress = [until](const Simulation& s, double w) { print_progress(s, w, until); };
+  RunResult r = run_simulation(sim, opt);
+  if (terminal) std::fprintf(stderr, "\n");
+  return r;
+}
+
+}  // namespace fluidbed::app

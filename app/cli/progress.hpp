@@ -1,0 +1,15 @@
+#pragma once
+// The run loop of `run` and `bench` with a progress line: on a terminal, stderr shows the
+// simulated time reached, wall seconds per simulated second and particle-steps per second.
+#include <functional>
+
+#include "run/run.hpp"
+#include "sim/simulation.hpp"
+
+namespace fluidbed::app {
+
+// run_simulation to `until` (s), `on_step` after every step (may be empty).
+RunResult run_with_progress(Simulation& sim, double until,
+                            std::function<void(const Simulation&)> on_step = {});
+
+}  // namespace fluidbed::app
