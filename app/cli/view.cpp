@@ -14,6 +14,7 @@
 #include "scene/scene_loader.hpp"
 #include "view/engine.hpp"
 #include "view/script.hpp"
+#include "view/script_runner.hpp"
 #include "view/window.hpp"
 
 namespace fluidbed::app {
@@ -31,12 +32,59 @@ OutputArgs with_run_names(OutputArgs o) {
   return o;
 }
 
+// Without a window (ScriptTarget, view/script_runner.hpp): the gas velocity, the ideal case,
+// screenshots and quit act at their simulated times; every other command has no effect.
+class HeadlessScript : public ScriptTarget {
+ public:
+  HeadlessScript(ViewModel& model, const FrameOptions& fo) : model_(model), fo_(fo) {}
+
+  void run_to(double t) override {
+    target_step_ = static_cast<std::int64_t>(std::llround(t / model_.sim().settings().time.dt));
+  }
+  bool busy() override { return model_.sim().steps() < target_step_; }
+  bool stopped() const override { return quit_; }
+  void unsupported(const ScriptLine& l) override {
+    std::fprintf(stderr, "fluidbed view: headless: script line %d has no effect without a window\n",
+                 l.line);
+  }
+  bool velocity(double u) override {
+    model_.set_velocity(u);
+    return true;
+  }
+  bool ideal(bool on) override {
+    model_.set_ideal(on);
+    return true;
+  }
+  bool screenshot(const std::string& file) override {
+    if (!renderer_) {
+      context_ = render::make_context("osmesa", fo_.width, fo_.height);
+      renderer_ = std::make_unique<render::Renderer>(*context_, fo_.font);
+    }
+    Snapshot snap;
+    take_snapshot(model_.sim(), snap);
+    render::write_png(file, renderer_->render_frame(snap, fo_.look, fo_.width, fo_.height));
+    std::printf("wrote %s\n", file.c_str());
+    return true;
+  }
+  bool quit() override {
+    quit_ = true;
+    return true;
+  }
+
+ private:
+  ViewModel& model_;
+  const FrameOptions& fo_;
+  std::int64_t target_step_ = 0;  // of the last `at T`
+  bool quit_ = false;
+  std::unique_ptr<render::GlContext> context_;
+  std::unique_ptr<render::Renderer> renderer_;
+};
+
 // Without a window: the scene run headlessly with frames every --frame-interval (as `run
 // --frames`), the script's gas velocity, ideal case and screenshots applied at their simulated
 // times.
 int view_headless(const Settings& s, const ViewArgs& a, const std::vector<ScriptLine>& script,
                   FrameOptions fo, const std::string& out) {
-  using K = ScriptLine::Kind;
   ViewModel model(s);
   const double dt = s.time.dt;
   // The end: the script's quit (at the last time it named), else --until, else the scene's end.
@@ -45,7 +93,7 @@ int view_headless(const Settings& s, const ViewArgs& a, const std::vector<Script
     double t = 0.0;
     for (const ScriptLine& l : script) {
       if (l.at >= 0.0) t = std::max(t, l.at);
-      if (l.kind == K::quit) {
+      if (l.kind == ScriptLine::Kind::quit) {
         until = t;
         break;
       }
@@ -55,45 +103,11 @@ int view_headless(const Settings& s, const ViewArgs& a, const std::vector<Script
   fo.frames = true;
   FrameOutput pictures(out, fo, model.sim(), until);
   pictures.observe(model.sim());
-  std::unique_ptr<render::GlContext> shot_context;
-  std::unique_ptr<render::Renderer> shot_renderer;
-  std::size_t next = 0;
-  bool quit = false;
+  ScriptRunner runner(script);
+  HeadlessScript target(model, fo);
   for (;;) {
-    while (!quit && next < script.size()) {
-      const ScriptLine& l = script[next];
-      if (l.at >= 0.0 && std::llround(l.at / dt) > model.sim().steps()) break;
-      ++next;
-      switch (l.kind) {
-        case K::velocity:
-          model.set_velocity(l.number);
-          break;
-        case K::ideal:
-          model.set_ideal(l.number != 0.0);
-          break;
-        case K::quit:
-          quit = true;
-          break;
-        case K::screenshot: {
-          if (!shot_renderer) {
-            shot_context = render::make_context("osmesa", fo.width, fo.height);
-            shot_renderer = std::make_unique<render::Renderer>(*shot_context, fo.font);
-          }
-          Snapshot snap;
-          take_snapshot(model.sim(), snap);
-          render::write_png(l.text,
-                            shot_renderer->render_frame(snap, fo.look, fo.width, fo.height));
-          std::printf("wrote %s\n", l.text.c_str());
-          break;
-        }
-        default:
-          std::fprintf(stderr,
-                       "fluidbed view: headless: script line %d has no effect without a window\n",
-                       l.line);
-          break;
-      }
-    }
-    if (quit || model.sim().steps() >= last) break;
+    runner.advance(target);
+    if (target.stopped() || model.sim().steps() >= last) break;
     model.sim().step();
     pictures.observe(model.sim());
   }

@@ -76,7 +76,7 @@ void keep_last(std::vector<T>& v, std::size_t n) {
 }  // namespace
 
 Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
-    : engine_(engine), opt_(std::move(options)), look_(opt_.look) {
+    : engine_(engine), opt_(std::move(options)), look_(opt_.look), script_(opt_.script) {
   context_ = render::make_context("glfw", opt_.width, opt_.height);
   renderer_ = std::make_unique<render::Renderer>(*context_, opt_.font);
   stats_.gl_version = context_->version_string();
@@ -419,118 +419,145 @@ void Viewer::stop_recording() {
   }
 }
 
-// The script: one line after the other; `at T` first runs the engine to T and waits for it.
+// The script (view/script_runner.hpp): the runner calls the commands below one after the
+// other; `at T` first runs the engine to T and waits for it.
 void Viewer::step_script() {
-  const auto& lines = opt_.script;
-  using K = ScriptLine::Kind;
-  while (!quit_ && script_next_ < lines.size()) {
-    if (script_waiting_engine_) {
-      if (!engine_.wait_until_stopped(std::chrono::milliseconds(0))) return;
-      script_waiting_engine_ = false;
-      take_newest();  // the state where it stopped
-    }
-    if (script_wait_until_) {
-      if (Clock::now() < *script_wait_until_) return;
-      script_wait_until_.reset();
-      post({ViewCommand::Kind::pause, 0.0});
-      script_waiting_engine_ = true;
-      continue;
-    }
-    if (!screenshot_requests_.empty()) return;  // drawn and written first
-    const ScriptLine& l = lines[script_next_];
-    if (l.at >= 0.0 && !script_at_done_) {
-      script_at_done_ = true;
-      post({ViewCommand::Kind::run_until, l.at});
-      script_waiting_engine_ = true;
-      continue;
-    }
-    script_at_done_ = false;
-    ++script_next_;
-    switch (l.kind) {
-      case K::velocity:
-        velocity_ = static_cast<float>(l.number);
-        post({ViewCommand::Kind::velocity, l.number});
-        break;
-      case K::ideal:
-        post({ViewCommand::Kind::ideal, l.number});
-        script_waiting_engine_ = true;
-        break;
-      case K::run:
-        script_wants_running_ = true;
-        break;
-      case K::pause:
-        script_wants_running_ = false;
-        break;
-      case K::step:
-        post({ViewCommand::Kind::step, l.number});
-        script_waiting_engine_ = true;
-        break;
-      case K::reset:
-        post({ViewCommand::Kind::reset, 0.0});
-        script_waiting_engine_ = true;
-        break;
-      case K::wait:
-        if (script_wants_running_) post({ViewCommand::Kind::run, 0.0});
-        script_wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                std::chrono::duration<double>(l.number));
-        break;
-      case K::colour:
-        look_.colour_by =
-            l.text == "mixing" ? render::ColourBy::height : render::parse_colour_by(l.text);
-        look_.range_min = look_.range_max = 0.0;
-        break;
-      case K::gas_arrows:
-        look_.gas_arrows = l.number != 0.0;
-        break;
-      case K::particle_arrows:
-        look_.particle_arrows = l.number != 0.0;
-        break;
-      case K::porosity:
-        look_.porosity_background = l.number != 0.0;
-        break;
-      case K::track:
-        if (snap_ && l.number >= static_cast<double>(snap_->particles())) {
-          std::fprintf(stderr, "fluidbed: error: script line %d: no particle %.0f (0 to %zu)\n",
-                       l.line, l.number, snap_->particles() - 1);
-          exit_status_ = 2;
-          quit_ = true;
-          return;
-        }
-        tracked_ = static_cast<long>(l.number);
-        trajectory_.clear();
-        trajectory_step_ = -1;
-        break;
-      case K::zoom:
-        view_.zoom = l.number;
-        view_.clamp();
-        break;
-      case K::screenshot:
-        screenshot_requests_.push_back(l.text);
-        settle_frames_ = 2;  // ImGui lays a changed panel out over a frame or two
-        break;
-      case K::record:
-        try {
-          start_recording(l.text);
-        } catch (const std::exception& e) {
-          std::fprintf(stderr, "fluidbed: output failed: %s\n", e.what());
-          exit_status_ = 4;
-          quit_ = true;
-          return;
-        }
-        break;
-      case K::record_stop:
-        stop_recording();
-        break;
-      case K::quit:
-        quit_ = true;
-        return;
-    }
-  }
-  if (!script_finished_ && script_next_ >= lines.size() && !script_waiting_engine_ &&
-      !lines.empty()) {
+  script_.advance(*this);
+  if (!script_finished_ && !quit_ && script_.at_end() && !script_waiting_engine_ &&
+      !script_.empty()) {
     script_finished_ = true;
     if (script_wants_running_) post({ViewCommand::Kind::run, 0.0});
   }
+}
+
+void Viewer::run_to(double t) {
+  post({ViewCommand::Kind::run_until, t});
+  script_waiting_engine_ = true;
+}
+
+bool Viewer::busy() {
+  for (;;) {
+    if (script_waiting_engine_) {
+      if (!engine_.wait_until_stopped(std::chrono::milliseconds(0))) return true;
+      script_waiting_engine_ = false;
+      take_newest();  // the state where it stopped
+    }
+    if (!script_wait_until_) break;
+    if (Clock::now() < *script_wait_until_) return true;
+    script_wait_until_.reset();
+    post({ViewCommand::Kind::pause, 0.0});
+    script_waiting_engine_ = true;
+  }
+  return !screenshot_requests_.empty();  // drawn and written first
+}
+
+void Viewer::unsupported(const ScriptLine& l) {
+  // Every command has a meaning in the window; a new one that is not carried out here says so.
+  std::fprintf(stderr, "fluidbed view: script line %d has no effect in the window\n", l.line);
+}
+
+bool Viewer::velocity(double u) {
+  velocity_ = static_cast<float>(u);
+  post({ViewCommand::Kind::velocity, u});
+  return true;
+}
+
+bool Viewer::ideal(bool on) {
+  post({ViewCommand::Kind::ideal, on ? 1.0 : 0.0});
+  script_waiting_engine_ = true;
+  return true;
+}
+
+bool Viewer::run_switch(bool running) {
+  script_wants_running_ = running;  // applied when a wait or the end of the script lets it run
+  return true;
+}
+
+bool Viewer::step(double count) {
+  post({ViewCommand::Kind::step, count});
+  script_waiting_engine_ = true;
+  return true;
+}
+
+bool Viewer::reset() {
+  post({ViewCommand::Kind::reset, 0.0});
+  script_waiting_engine_ = true;
+  return true;
+}
+
+bool Viewer::wait(double wall_seconds) {
+  if (script_wants_running_) post({ViewCommand::Kind::run, 0.0});
+  script_wait_until_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(wall_seconds));
+  return true;
+}
+
+bool Viewer::colour(const std::string& mode) {
+  look_.colour_by = mode == "mixing" ? render::ColourBy::height : render::parse_colour_by(mode);
+  look_.range_min = look_.range_max = 0.0;
+  return true;
+}
+
+bool Viewer::gas_arrows(bool on) {
+  look_.gas_arrows = on;
+  return true;
+}
+
+bool Viewer::particle_arrows(bool on) {
+  look_.particle_arrows = on;
+  return true;
+}
+
+bool Viewer::porosity(bool on) {
+  look_.porosity_background = on;
+  return true;
+}
+
+bool Viewer::track(long id, int line) {
+  if (snap_ && id >= static_cast<long>(snap_->particles())) {
+    std::fprintf(stderr, "fluidbed: error: script line %d: no particle %ld (0 to %zu)\n", line, id,
+                 snap_->particles() - 1);
+    exit_status_ = 2;
+    quit_ = true;
+    return true;
+  }
+  tracked_ = id;
+  trajectory_.clear();
+  trajectory_step_ = -1;
+  return true;
+}
+
+bool Viewer::zoom(double factor) {
+  view_.zoom = factor;
+  view_.clamp();
+  return true;
+}
+
+bool Viewer::screenshot(const std::string& file) {
+  screenshot_requests_.push_back(file);
+  settle_frames_ = 2;  // ImGui lays a changed panel out over a frame or two
+  return true;
+}
+
+bool Viewer::record(const std::string& target) {
+  try {
+    start_recording(target);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fluidbed: output failed: %s\n", e.what());
+    exit_status_ = 4;
+    quit_ = true;
+  }
+  return true;
+}
+
+bool Viewer::record_stop() {
+  stop_recording();
+  return true;
+}
+
+bool Viewer::quit() {
+  quit_ = true;
+  return true;
 }
 
 }  // namespace fluidbed::app

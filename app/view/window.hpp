@@ -18,6 +18,7 @@
 #include "render/video_writer.hpp"
 #include "view/engine.hpp"
 #include "view/script.hpp"
+#include "view/script_runner.hpp"
 
 namespace fluidbed::app {
 
@@ -39,7 +40,8 @@ struct ViewerStats {
   std::string gl_version;
 };
 
-class Viewer {
+// The window carries out every script command (ScriptTarget, view/script_runner.hpp).
+class Viewer : private ScriptTarget {
  public:
   // Opens the window (throws std::runtime_error when it cannot) and sets up ImGui.
   Viewer(ViewEngine& engine, ViewerOptions options);
@@ -68,6 +70,28 @@ class Viewer {
   void toggle_run();
   void cycle_colour();
   std::string next_name(const std::string& stem, const std::string& ext);
+
+  // ScriptTarget: the script's commands.
+  void run_to(double t) override;
+  bool busy() override;
+  bool stopped() const override { return quit_; }
+  void unsupported(const ScriptLine& line) override;
+  bool velocity(double m_per_s) override;
+  bool ideal(bool on) override;
+  bool run_switch(bool running) override;
+  bool step(double count) override;
+  bool reset() override;
+  bool wait(double wall_seconds) override;
+  bool colour(const std::string& mode) override;
+  bool gas_arrows(bool on) override;
+  bool particle_arrows(bool on) override;
+  bool porosity(bool on) override;
+  bool track(long id, int line) override;
+  bool zoom(double factor) override;
+  bool screenshot(const std::string& file) override;
+  bool record(const std::string& target) override;
+  bool record_stop() override;
+  bool quit() override;
 
   ViewEngine& engine_;
   ViewerOptions opt_;
@@ -111,9 +135,8 @@ class Viewer {
   std::string message_;  // the last thing written, or a problem
 
   // The script.
-  std::size_t script_next_ = 0;
+  ScriptRunner script_;
   bool script_waiting_engine_ = false;
-  bool script_at_done_ = false;  // the current line's `at T` was reached
   bool script_finished_ = false;
   std::optional<std::chrono::steady_clock::time_point> script_wait_until_;
   bool script_wants_running_ = true;

@@ -1,7 +1,7 @@
 // The viewer's engine side: the snapshot hand-off between threads, the command queue, the engine
 // thread (pause, single step, gas velocity, reset, the ideal case) and the view script parser.
 // Built also under the thread sanitizer (scripts/test.sh): the engine thread and a reader thread
-// standing in for the window run together here.
+// standing in for the window run together here. Also the script runner, on a recording target.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -13,6 +13,7 @@
 #include "sim/snapshot.hpp"
 #include "view/engine.hpp"
 #include "view/script.hpp"
+#include "view/script_runner.hpp"
 #include "view_scene.hpp"
 
 namespace fluidbed {
@@ -385,6 +386,47 @@ TEST(ViewScript, NamesTheLineAndTheProblem) {
   EXPECT_NE(message("quit now").find("unexpected 'now'"), std::string::npos);
   EXPECT_NE(message("step 0").find("whole count"), std::string::npos);
   EXPECT_THROW(app::load_view_script("/nonexistent/script.txt"), InputError);
+}
+
+// The one interpreter: lines in order, each `at T` asked for once and waited for, commands a side
+// does not carry out handed to unsupported(), nothing after quit.
+TEST(ScriptRunner, WaitsForEachAtAndHandsEveryCommandOver) {
+  struct Recorder : app::ScriptTarget {
+    std::vector<std::string> calls;
+    double engine_time = 0.0, target_time = 0.0;  // s
+    bool quitting = false;
+    void run_to(double t) override {
+      target_time = t;
+      calls.push_back("run_to " + std::to_string(t));
+    }
+    bool busy() override { return engine_time < target_time; }
+    bool stopped() const override { return quitting; }
+    void unsupported(const app::ScriptLine& l) override {
+      calls.push_back("unsupported line " + std::to_string(l.line));
+    }
+    bool velocity(double u) override {
+      calls.push_back("velocity " + std::to_string(u));
+      return true;
+    }
+    bool quit() override {
+      quitting = true;
+      calls.push_back("quit");
+      return true;
+    }
+  };
+  app::ScriptRunner runner(
+      app::parse_view_script("velocity 1\nat 0.5 velocity 2\nzoom 2\nquit\nvelocity 3\n", "t"));
+  Recorder r;
+  runner.advance(r);  // the first line, then the engine must get to 0.5 s
+  EXPECT_EQ(r.calls, (std::vector<std::string>{"velocity 1.000000", "run_to 0.500000"}));
+  runner.advance(r);  // still on its way: nothing more, and the `at` is not asked for again
+  EXPECT_EQ(r.calls.size(), 2u);
+  r.engine_time = 0.5;
+  runner.advance(r);
+  EXPECT_EQ(r.calls, (std::vector<std::string>{"velocity 1.000000", "run_to 0.500000",
+                                               "velocity 2.000000", "unsupported line 3",
+                                               "quit"}));
+  EXPECT_FALSE(runner.at_end());  // the line after quit is never carried out
 }
 
 }  // namespace

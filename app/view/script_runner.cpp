@@ -1,0 +1,46 @@
+#include "view/script_runner.hpp"
+
+namespace fluidbed::app {
+
+void ScriptRunner::advance(ScriptTarget& target) {
+  while (!target.stopped() && next_ < lines_.size()) {
+    if (target.busy()) return;
+    const ScriptLine& l = lines_[next_];
+    if (l.at >= 0.0 && !at_asked_) {
+      at_asked_ = true;
+      target.run_to(l.at);
+      continue;  // busy until the engine is there
+    }
+    at_asked_ = false;
+    ++next_;
+    apply(l, target);
+  }
+}
+
+void ScriptRunner::apply(const ScriptLine& l, ScriptTarget& t) {
+  using K = ScriptLine::Kind;
+  const bool on = l.number != 0.0;
+  bool done = false;
+  switch (l.kind) {
+    case K::velocity: done = t.velocity(l.number); break;
+    case K::ideal: done = t.ideal(on); break;
+    case K::run: done = t.run_switch(true); break;
+    case K::pause: done = t.run_switch(false); break;
+    case K::step: done = t.step(l.number); break;
+    case K::reset: done = t.reset(); break;
+    case K::wait: done = t.wait(l.number); break;
+    case K::colour: done = t.colour(l.text); break;
+    case K::gas_arrows: done = t.gas_arrows(on); break;
+    case K::particle_arrows: done = t.particle_arrows(on); break;
+    case K::porosity: done = t.porosity(on); break;
+    case K::track: done = t.track(static_cast<long>(l.number), l.line); break;
+    case K::zoom: done = t.zoom(l.number); break;
+    case K::screenshot: done = t.screenshot(l.text); break;
+    case K::record: done = t.record(l.text); break;
+    case K::record_stop: done = t.record_stop(); break;
+    case K::quit: done = t.quit(); break;
+  }
+  if (!done) t.unsupported(l);
+}
+
+}  // namespace fluidbed::app

@@ -1,0 +1,70 @@
+#pragma once
+// One interpreter for view scripts (view/script.hpp), shared by the window (view/window.cpp) and
+// the headless viewer (cli/view.cpp). The runner walks the lines in order: it first has the
+// target run the engine to a line's `at T`, waits while the target is busy, then hands the
+// command to the target as one call. A new command is a Kind and its words in view/script.*, a
+// method of ScriptTarget here and one case in ScriptRunner::apply; each side then says whether it
+// can carry it out.
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "view/script.hpp"
+
+namespace fluidbed::app {
+
+// What a script acts on. Each command returns true when this side carried it out; the defaults
+// return false (the headless viewer has no window to zoom or record), and the runner then calls
+// unsupported() with the line.
+class ScriptTarget {
+ public:
+  virtual ~ScriptTarget() = default;
+
+  // Timing. run_to: start the engine towards the step nearest simulated time t (s), to stop
+  // there. busy: the next line must wait (the engine on its way, a wait, a screenshot not yet
+  // written). stopped: the script is over (quit, or a command that failed).
+  virtual void run_to(double t) = 0;
+  virtual bool busy() = 0;
+  virtual bool stopped() const = 0;
+  virtual void unsupported(const ScriptLine& line) = 0;
+
+  // The commands, as view/script.hpp lists them.
+  virtual bool velocity(double /*m_per_s*/) { return false; }
+  virtual bool ideal(bool /*on*/) { return false; }
+  virtual bool run_switch(bool /*running: run, or pause*/) { return false; }
+  virtual bool step(double /*count*/) { return false; }
+  virtual bool reset() { return false; }
+  virtual bool wait(double /*wall_seconds*/) { return false; }
+  virtual bool colour(const std::string& /*mode*/) { return false; }
+  virtual bool gas_arrows(bool /*on*/) { return false; }
+  virtual bool particle_arrows(bool /*on*/) { return false; }
+  virtual bool porosity(bool /*on*/) { return false; }
+  virtual bool track(long /*id, -1: off*/, int /*line*/) { return false; }
+  virtual bool zoom(double /*factor*/) { return false; }
+  virtual bool screenshot(const std::string& /*file*/) { return false; }
+  virtual bool record(const std::string& /*file_or_folder*/) { return false; }
+  virtual bool record_stop() { return false; }
+  virtual bool quit() { return false; }
+};
+
+class ScriptRunner {
+ public:
+  explicit ScriptRunner(std::vector<ScriptLine> lines) : lines_(std::move(lines)) {}
+
+  // Carries out lines until one must wait (the target is busy or its `at T` is not reached),
+  // the target stops, or the lines run out.
+  void advance(ScriptTarget& target);
+  bool empty() const { return lines_.empty(); }
+  bool at_end() const { return next_ >= lines_.size(); }  // every line carried out
+
+  // The one place a line becomes a call.
+  static void apply(const ScriptLine& line, ScriptTarget& target);
+
+ private:
+  std::vector<ScriptLine> lines_;
+  std::size_t next_ = 0;
+  bool at_asked_ = false;  // the current line's run_to was called
+};
+
+}  // namespace fluidbed::app
