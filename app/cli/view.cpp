@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/errors.hpp"
+#include "core/steps.hpp"
 #include "output/frames.hpp"
 #include "render/gl_context.hpp"
 #include "render/renderer.hpp"
@@ -39,7 +40,7 @@ class HeadlessScript : public ScriptTarget {
   HeadlessScript(ViewModel& model, const FrameOptions& fo) : model_(model), fo_(fo) {}
 
   void run_to(double t) override {
-    target_step_ = static_cast<std::int64_t>(std::llround(t / model_.sim().settings().time.dt));
+    target_step_ = steps_for(t, model_.sim().settings().time.dt);
   }
   bool busy() override { return model_.sim().steps() < target_step_; }
   bool stopped() const override { return quit_; }
@@ -99,7 +100,7 @@ int view_headless(const Settings& s, const ViewArgs& a, const std::vector<Script
       }
     }
   }
-  const auto last = static_cast<std::int64_t>(std::llround(until / dt));
+  const std::int64_t last = steps_for(until, dt);
   fo.frames = true;
   FrameOutput pictures(out, fo, model.sim(), until);
   pictures.observe(model.sim());

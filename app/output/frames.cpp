@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/steps.hpp"
 #include "io/vtk_writer.hpp"
 #include "render/gl_context.hpp"
 #include "render/image.hpp"
@@ -45,17 +46,17 @@ FrameOutput::FrameOutput(std::string out_dir, FrameOptions options, const Simula
   // Output times are steps: the nearest step to each time (within dt / 2), the same rounding the
   // run uses for its end, so the same command always gives the same frames.
   const std::int64_t first = sim.steps();
-  const auto last = static_cast<std::int64_t>(std::llround(until / dt_));
+  const std::int64_t last = steps_for(until, dt_);
   if (opt_.frames || opt_.video || opt_.vtk) {
     const double t0 = static_cast<double>(first) * dt_;
     for (auto k = static_cast<std::int64_t>(std::ceil(t0 / opt_.interval - 1e-6));; ++k) {
-      const auto n = static_cast<std::int64_t>(std::llround(static_cast<double>(k) * opt_.interval / dt_));
+      const std::int64_t n = steps_for(static_cast<double>(k) * opt_.interval, dt_);
       if (n > last) break;
       if (n >= first) due_.push_back({n, true, false});
     }
   }
   for (double t : opt_.montage) {
-    const auto n = static_cast<std::int64_t>(std::llround(t / dt_));
+    const std::int64_t n = steps_for(t, dt_);
     if (n < first || n > last) {
       char msg[160];
       std::snprintf(msg, sizeof msg, "--montage time %g s is outside the run (%g to %g s)", t,
@@ -112,7 +113,7 @@ void FrameOutput::observe(const Simulation& sim) {
   channel_.publish(snap);  // the newest state, for any live reader
   stats_.snapshot_s += seconds_since(t0);
   push({std::move(snap), due.frame, due.montage,
-        static_cast<std::int64_t>(std::llround(sim.time() / opt_.interval))});
+        steps_for(sim.time(), opt_.interval)});
 }
 
 void FrameOutput::push(Job job) {

@@ -6,6 +6,7 @@
 
 #include "chart/chart.hpp"
 #include "cli/commands.hpp"
+#include "core/steps.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -40,7 +41,7 @@ std::vector<std::pair<double, double>> jet_region_points(double width) {
 }
 
 TrajectoryRecorder::TrajectoryRecorder(const std::vector<int>& ids, double interval, double dt)
-    : every_(std::max<std::int64_t>(1, std::llround(interval / dt))) {
+    : every_(std::max<std::int64_t>(1, steps_for(interval, dt))) {
   for (int id : ids) tracks_.push_back({id, {}, {}, {}});
 }
 

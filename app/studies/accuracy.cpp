@@ -18,6 +18,7 @@
 #include "analysis/bounce_tracker.hpp"
 #include "analysis/mechanical_energy.hpp"
 #include "core/errors.hpp"
+#include "core/steps.hpp"
 #include "sim/simulation.hpp"
 #include "studies/study.hpp"
 
@@ -208,8 +209,8 @@ void packing_test(const Config& c, const RestState& rest, const Variant& v, Step
   s.diagnostics.output_interval = c.energy_time / 20.0;
   const double g = s.physics.gravity;
   const double scale = paper_particle_mass() * g * s.particles.diameter * c.rest_count;
-  const auto steps = std::llround(c.energy_time / out.dt);
-  const auto every = std::max<long long>(1, steps / 200);
+  const std::int64_t steps = steps_for(c.energy_time, out.dt);
+  const std::int64_t every = std::max<std::int64_t>(1, steps / 200);
   double sample_time = 0.0, e0 = 0.0, growth = 0.0, last = 0.0;
   RunOptions opt;
   opt.on_step = [&](const Simulation& sim) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "core/errors.hpp"
+#include "core/steps.hpp"
 #include "run/packed_bed.hpp"
 
 namespace fluidbed::app {
@@ -200,7 +201,7 @@ void ViewEngine::apply(const ViewCommand& c) {
       steps_left_ += std::max<std::int64_t>(1, std::llround(c.value));
       break;
     case K::run_until: {
-      const auto target = static_cast<std::int64_t>(std::llround(c.value / sim.settings().time.dt));
+      const std::int64_t target = steps_for(c.value, sim.settings().time.dt);
       until_step_ = std::max(until_step_, target);
       break;
     }
