@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 #include "analysis/bounce_tracker.hpp"
@@ -156,7 +157,7 @@ struct StepResult {
 
 double analytic_restitution(double k, double eta, double m) {
   const double zeta = eta / (2.0 * std::sqrt(k * m));
-  return std::exp(-kPi * zeta / std::sqrt(1.0 - zeta * zeta));
+  return std::exp(-std::numbers::pi * zeta / std::sqrt(1.0 - zeta * zeta));
 }
 
 // The settled packing every packing test starts from: frictionless spheres on the random lattice,

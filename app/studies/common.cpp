@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <stdexcept>
 
 #include "cli/commands.hpp"
@@ -72,10 +73,13 @@ Report run_study(const Info& info, const Options& o) {
   return r;
 }
 
-double paper_particle_mass() { return 2700.0 * kPi * 0.004 * 0.004 * 0.004 / 6.0; }
+// kg: 2700 kg/m3 x pi d^3 / 6, d = 4 mm.
+double paper_particle_mass() {
+  return 2700.0 * std::numbers::pi * 0.004 * 0.004 * 0.004 / 6.0;
+}
 
 double contact_duration(double stiffness, double mass) {
-  return kPi * std::sqrt(mass / stiffness);
+  return std::numbers::pi * std::sqrt(mass / stiffness);
 }
 
 double thread_cpu_seconds() {

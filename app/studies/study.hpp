@@ -57,8 +57,6 @@ Report run_study(const Info& info, const Options& o);
 
 // ---- shared by the studies ----------------------------------------------------------------
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The paper's sphere: 4 mm glass, 9.048e-5 kg.
 double paper_particle_mass();
 // The contact duration used by every study: pi sqrt(m / kappa), a sphere against a wall (the
