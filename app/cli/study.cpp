@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/errors.hpp"
+#include "core/threads.hpp"
 #include "studies/study.hpp"
 
 namespace fluidbed::app {
@@ -35,7 +36,7 @@ int study_command(const StudyArgs& a) {
     std::fflush(stdout);
   };
   std::printf("study %s (%s size, %d worker threads): %s\n", info->name,
-              o.size == Size::Tiny ? "tiny" : "full", resolve_workers(o.workers), info->title);
+              o.size == Size::Tiny ? "tiny" : "full", resolve_threads(o.workers), info->title);
   const Report r = run_study(*info, o);
   std::printf("%d points, %d failed runs (recorded); %.0f s\n", r.points, r.failed, r.wall_time);
   std::printf("wrote %s/study.csv, %s/summary.md", o.out.c_str(), o.out.c_str());

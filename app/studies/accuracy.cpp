@@ -357,9 +357,7 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
     return c.multipliers[a % nm] < c.multipliers[b % nm];
   });
   std::mutex log_mutex;
-  const std::vector<StepResult> flat = run_parallel<StepResult>(
-      nv * nm, resolve_workers(o.workers),
-      [&](std::size_t k) {
+  const std::vector<StepResult> flat = RunPool(o.workers).map<StepResult>(nv * nm, [&](std::size_t k) {
         const Variant& v = c.variants[k / nm];
         StepResult r = measure_step(c, rest, v, c.multipliers[k % nm]);
         if (o.log) {

@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/threads.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
 #include "studies/study.hpp"
@@ -62,7 +63,7 @@ Report run_study(const Info& info, const Options& o) {
   std::string md = "# Study `" + r.name + "`: " + r.title + "\n\n";
   md += "Made by `fluidbed study " + r.name +
         (o.size == Size::Tiny ? " --size tiny" : "") + "` in " + fmt("%.0f s", r.wall_time) +
-        " on " + std::to_string(resolve_workers(o.workers)) + " worker thread(s); " +
+        " on " + std::to_string(resolve_threads(o.workers)) + " worker thread(s); " +
         std::to_string(r.points) + " points, " + std::to_string(r.failed) +
         " of them failed runs (recorded in study.csv with the reason). Every number is measured "
         "by this run.\n\n";
@@ -86,11 +87,6 @@ double thread_cpu_seconds() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-int resolve_workers(int requested) {
-  if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
 PointRun run_point(const Settings& s, double until, RunOptions options) {

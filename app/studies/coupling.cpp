@@ -102,7 +102,7 @@ Report coupling_study(const Options& o) {
   base.particles.state_file = packed;
   const std::vector<CouplingSetting> sets = settings_for(o.size);
   std::mutex log_mutex;
-  const auto res = run_parallel<CouplingResult>(sets.size(), resolve_workers(o.workers), [&](std::size_t i) {
+  const auto res = RunPool(o.workers).map<CouplingResult>(sets.size(), [&](std::size_t i) {
     CouplingResult r;
     r.set = sets[i];
     const Settings s = with_coupling(base, sets[i]);

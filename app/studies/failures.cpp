@@ -109,7 +109,7 @@ Report failures_study(const Options& o) {
   const std::string packed = packed_bed_state(bed_scene(o.size), o.log);
   const std::vector<Case> cases = make_cases(o.size, packed);
   std::mutex log_mutex;
-  const auto res = run_parallel<CaseResult>(cases.size(), resolve_workers(o.workers), [&](std::size_t i) {
+  const auto res = RunPool(o.workers).map<CaseResult>(cases.size(), [&](std::size_t i) {
     CaseResult r{cases[i], run_point(cases[i].settings, cases[i].until)};
     if (o.log) {
       std::lock_guard lock(log_mutex);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/threads.hpp"
 #include "output/plots.hpp"
 #include "run/packed_bed.hpp"
 #include "run/sweep.hpp"
@@ -86,7 +87,7 @@ Report model_form_study(const Options& o) {
                     : std::vector<double>{1.0, 1.5, 2.0, 2.4, 2.8, 3.2, 3.6, 4.0, 4.5};
     f.options.run_time = tiny ? 0.25 : 1.0;
     f.options.averaging_start = tiny ? 0.1 : 0.5;
-    f.options.threads = resolve_workers(o.workers);
+    f.options.threads = resolve_threads(o.workers);
     f.options.out_dir = (fs::path(o.out) / (f.model_a ? "sweep-model-a" : "sweep-printed")).string();
     f.options.log = [&](const std::string& line) {
       if (o.log) o.log("  " + std::string(f.model_a ? "model A: " : "printed: ") + line);

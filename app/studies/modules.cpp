@@ -104,7 +104,7 @@ Report modules_study(const Options& o) {
       {"gas alone (bed held fixed)", "gas through a fixed bed", {"frozen"}, false},
   };
   std::mutex log_mutex;
-  const auto res = run_parallel<ModuleResult>(cfgs.size(), resolve_workers(o.workers), [&](std::size_t i) {
+  const auto res = RunPool(o.workers).map<ModuleResult>(cfgs.size(), [&](std::size_t i) {
     ModuleResult r = run_module(cfgs[i], bed, until);
     if (o.log) {
       std::lock_guard lock(log_mutex);

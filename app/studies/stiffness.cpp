@@ -75,7 +75,7 @@ Report stiffness_study(const Options& o) {
   const double until = tiny ? 0.4 : 1.5, averaging = tiny ? 0.2 : 0.5;
   const std::vector<double> ks = {50000.0, 800.0};
   std::mutex log_mutex;
-  const auto pts = run_parallel<StiffPoint>(ks.size(), resolve_workers(o.workers), [&](std::size_t i) {
+  const auto pts = RunPool(o.workers).map<StiffPoint>(ks.size(), [&](std::size_t i) {
     StiffPoint p = run_stiffness(ks[i], o.size, until, averaging, o.out);
     if (o.log) {
       std::lock_guard lock(log_mutex);

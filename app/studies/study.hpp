@@ -1,22 +1,18 @@
 #pragma once
 // Studies: speed against accuracy, stability limits and model choices, measured by the program
 // itself (`fluidbed study NAME --out DIR`). Each study runs its independent points side by side
-// (one std::thread per core over a queue, each simulation on one thread), records every point in
+// (RunPool, studies/run_pool.hpp: each simulation on one thread), records every point in
 // DIR/study.csv (a failed run is a row with its reason, never a crash), draws its charts as PNG
 // and writes DIR/summary.md: what was measured, the key figures, and what a user should choose.
-#include <algorithm>
-#include <atomic>
 #include <cstddef>
-#include <exception>
 #include <functional>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "chart/chart.hpp"
 #include "run/run.hpp"
 #include "scene/settings.hpp"
+#include "studies/run_pool.hpp"
 
 namespace fluidbed::app::study {
 
@@ -64,44 +60,10 @@ double paper_particle_mass();
 // A pair of equal spheres (reduced mass m/2) lasts 1/sqrt(2) as long.
 double contact_duration(double stiffness, double mass);
 
-int resolve_workers(int requested);
-
 // CPU seconds used by the calling thread so far. A point's cost is measured with it: each point
 // runs on one thread, so this is its compute time whatever else shares the cores (on an idle core
 // it equals the wall time; with other programs running, wall time measures the scheduler).
 double thread_cpu_seconds();
-
-// f(k) for k in [0, n) on `workers` threads taking indices from a shared counter, heaviest
-// first when `order` is given (a permutation of [0, n)); results in index order.
-template <class R>
-std::vector<R> run_parallel(std::size_t n, int workers, const std::function<R(std::size_t)>& f,
-                            const std::vector<std::size_t>& order = {}) {
-  std::vector<R> out(n);
-  std::atomic<std::size_t> next{0};
-  std::mutex error_mutex;
-  std::exception_ptr error;
-  auto worker = [&] {
-    for (std::size_t q; (q = next.fetch_add(1)) < n;) {
-      const std::size_t k = order.empty() ? q : order[q];
-      try {
-        out[k] = f(k);
-      } catch (...) {
-        std::lock_guard lock(error_mutex);
-        if (!error) error = std::current_exception();
-      }
-    }
-  };
-  const auto threads = static_cast<std::size_t>(std::max(1, workers));
-  if (threads == 1 || n <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (std::size_t t = 0; t < std::min(threads, n); ++t) pool.emplace_back(worker);
-    for (auto& t : pool) t.join();
-  }
-  if (error) std::rethrow_exception(error);
-  return out;
-}
 
 // A run that may fail: the failure's words and its kind instead of an exception.
 struct PointRun {
