@@ -2,11 +2,7 @@
 
 #include <stb_truetype.h>
 
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
-
-#include "core/errors.hpp"
 
 namespace fluidbed::render {
 namespace {
@@ -14,21 +10,9 @@ namespace {
 struct Range {
   int first, count;
 };
-// Printable ASCII; Latin-1 from the degree sign on (signs, multiplication sign, letters); Greek.
-constexpr Range kRanges[] = {{32, 95}, {0xB0, 80}, {0x391, 57}};
-
-// Decodes one UTF-8 code point at s[i], advancing i; invalid bytes give U+FFFD.
-int next_code_point(const std::string& s, std::size_t& i) {
-  const auto c = static_cast<unsigned char>(s[i++]);
-  int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
-  if (extra < 0) return 0xFFFD;
-  int cp = extra == 0 ? c : c & (0x3F >> extra);
-  for (; extra > 0; --extra) {
-    if (i >= s.size() || (static_cast<unsigned char>(s[i]) >> 6) != 0x2) return 0xFFFD;
-    cp = (cp << 6) | (static_cast<unsigned char>(s[i++]) & 0x3F);
-  }
-  return cp;
-}
+// Printable ASCII; Latin-1 from the degree sign on (signs, multiplication sign, letters); Greek;
+// superscript digits and signs (U+2070-207B) and the minus sign (U+2212) of tick labels.
+constexpr Range kRanges[] = {{32, 95}, {0xB0, 80}, {0x391, 57}, {0x2070, 12}, {0x2212, 1}};
 
 }  // namespace
 
@@ -46,7 +30,7 @@ struct FontAtlas::Impl {
   }
 };
 
-FontAtlas::FontAtlas(const std::vector<unsigned char>& ttf, float pixel_height)
+FontAtlas::FontAtlas(const FontFile& font, float pixel_height)
     : impl_(std::make_unique<Impl>()), pixel_height_(pixel_height) {
   // Two-times horizontal oversampling keeps small labels crisp under sub-pixel placement; the
   // atlas grows until everything fits.
@@ -65,14 +49,14 @@ FontAtlas::FontAtlas(const std::vector<unsigned char>& ttf, float pixel_height)
       ranges[r].num_chars = kRanges[r].count;
       ranges[r].chardata_for_range = impl_->chars[r].data();
     }
-    const int ok = stbtt_PackFontRanges(&pc, ttf.data(), 0, ranges, static_cast<int>(std::size(ranges)));
+    const int ok = stbtt_PackFontRanges(&pc, font.bytes.data(), 0, ranges, static_cast<int>(std::size(ranges)));
     stbtt_PackEnd(&pc);
     if (ok) break;
   }
   if (atlas_size_ > 4096) throw std::runtime_error("font: glyphs do not fit a 4096 px atlas");
   stbtt_fontinfo info;
-  if (!stbtt_InitFont(&info, ttf.data(), stbtt_GetFontOffsetForIndex(ttf.data(), 0)))
-    throw std::runtime_error("font: not a TrueType font");
+  if (!stbtt_InitFont(&info, font.bytes.data(), font.offset))
+    throw std::runtime_error("font: not a TrueType font: " + font.path);
   int x0, y0, x1, y1;
   stbtt_GetCodepointBox(&info, 'H', &x0, &y0, &x1, &y1);
   ascent_ = static_cast<float>(y1) * stbtt_ScaleForPixelHeight(&info, pixel_height);
@@ -80,37 +64,28 @@ FontAtlas::FontAtlas(const std::vector<unsigned char>& ttf, float pixel_height)
 
 FontAtlas::~FontAtlas() = default;
 
-void FontAtlas::layout(const std::string& text, float x, float y,
-                       std::vector<GlyphQuad>& out) const {
+template <class F>
+float FontAtlas::walk(const std::string& text, float x, float y, F&& each) const {
   for (std::size_t i = 0; i < text.size();) {
     int index = 0;
     const stbtt_packedchar* chars = impl_->find(next_code_point(text, i), index);
     if (!chars) continue;
     stbtt_aligned_quad q;
     stbtt_GetPackedQuad(chars, atlas_size_, atlas_size_, index, &x, &y, &q, 0);
-    if (q.x1 > q.x0) out.push_back({q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1});
-  }
-}
-
-float FontAtlas::advance(const std::string& text) const {
-  float x = 0.0f, y = 0.0f;
-  for (std::size_t i = 0; i < text.size();) {
-    int index = 0;
-    const stbtt_packedchar* chars = impl_->find(next_code_point(text, i), index);
-    if (!chars) continue;
-    stbtt_aligned_quad q;
-    stbtt_GetPackedQuad(chars, atlas_size_, atlas_size_, index, &x, &y, &q, 0);
+    each(q);
   }
   return x;
 }
 
-std::vector<unsigned char> read_font_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot read the font file " + path);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                   std::istreambuf_iterator<char>());
-  if (bytes.size() < 12) throw InputError("the font file " + path + " is empty or truncated");
-  return bytes;
+void FontAtlas::layout(const std::string& text, float x, float y,
+                       std::vector<GlyphQuad>& out) const {
+  walk(text, x, y, [&out](const stbtt_aligned_quad& q) {
+    if (q.x1 > q.x0) out.push_back({q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1});
+  });
+}
+
+float FontAtlas::advance(const std::string& text) const {
+  return walk(text, 0.0f, 0.0f, [](const stbtt_aligned_quad&) {});
 }
 
 }  // namespace fluidbed::render

@@ -1,11 +1,15 @@
 #pragma once
-// Text for frame labels: a TrueType font (assets/fonts/DejaVuSans.ttf) rasterised once per pixel
-// size into an 8-bit coverage atlas (stb_truetype), and strings laid out as textured quads.
-// UTF-8; covers printable ASCII, Latin-1 from the degree sign on (times sign, micro) and Greek.
+// Text for frame labels: a TrueType font (assets/fonts/DejaVuSans.ttf, read by
+// render/font_file.hpp) rasterised once per pixel size into an 8-bit coverage atlas
+// (stb_truetype), and strings laid out as textured quads. UTF-8; covers printable ASCII, Latin-1
+// from the degree sign on (times sign, micro), Greek, superscript digits and signs, and the minus
+// sign (the tick labels of render/ticks.hpp).
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "render/font_file.hpp"
 
 namespace fluidbed::render {
 
@@ -16,8 +20,8 @@ struct GlyphQuad {
 
 class FontAtlas {
  public:
-  // `ttf` is the font file's bytes (kept alive by the caller); `pixel_height` the em height in px.
-  FontAtlas(const std::vector<unsigned char>& ttf, float pixel_height);
+  // `font` is kept alive by the caller; `pixel_height` the em height in px.
+  FontAtlas(const FontFile& font, float pixel_height);
   ~FontAtlas();
   FontAtlas(const FontAtlas&) = delete;
   FontAtlas& operator=(const FontAtlas&) = delete;
@@ -32,6 +36,10 @@ class FontAtlas {
   float advance(const std::string& text) const;  // px
 
  private:
+  // Places each glyph of `text` from the pen at (x, y), px; returns the pen's x at the end.
+  template <class F>
+  float walk(const std::string& text, float x, float y, F&& each) const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   float pixel_height_;
@@ -39,8 +47,5 @@ class FontAtlas {
   std::vector<std::uint8_t> atlas_;
   float ascent_ = 0.0f;
 };
-
-// The bytes of a font file; throws InputError naming the file when it cannot be read.
-std::vector<unsigned char> read_font_file(const std::string& path);
 
 }  // namespace fluidbed::render

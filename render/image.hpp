@@ -1,5 +1,6 @@
 #pragma once
-// An 8-bit RGB picture, rows from the top, and its PNG file (deflated by zlib).
+// An 8-bit RGB picture, rows from the top, and its PNG file (deflated by zlib): the program's one
+// PNG writer, for frames, screenshots and the charts (app/chart). No GL.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,8 +17,12 @@ struct Image {
   }
 };
 
-// Writes `image` as PNG to `path` through a temporary file renamed into place, so a reader never
-// sees half a frame. Throws std::runtime_error naming the file on failure.
+// WIDTH x HEIGHT pixels of RGB (rows from the top, 3 bytes a pixel) as the bytes of a PNG file.
+std::vector<std::uint8_t> encode_png(int width, int height, const std::uint8_t* rgb);
+// Writes them to `path` through a temporary file of this process's own beside it, renamed into
+// place, so a reader never sees half a picture and a failed write leaves nothing behind. Throws
+// std::runtime_error naming the file on failure.
+void write_png(const std::string& path, int width, int height, const std::uint8_t* rgb);
 void write_png(const std::string& path, const Image& image);
 
 }  // namespace fluidbed::render

@@ -6,8 +6,11 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/errors.hpp"
 #include "render/font.hpp"
+#include "render/font_file.hpp"
 #include "render/gl_objects.hpp"
+#include "render/ticks.hpp"
 
 namespace fluidbed::render {
 namespace {
@@ -92,32 +95,13 @@ void add_arrow(std::vector<Arrow>& out, float x, float y, float vx, float vy, fl
   out.push_back({x, y, vx, vy, shaft_half, head, head_half, c.r, c.g, c.b});
 }
 
-// Tick values 1, 2 or 5 x 10^k apart, about four over [lo, hi].
-std::vector<double> nice_ticks(double lo, double hi) {
-  std::vector<double> ticks;
-  if (!(hi > lo)) return ticks;
-  const double raw = (hi - lo) / 4.0;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double r = raw / mag;
-  const double step = (r < 1.5 ? 1.0 : r < 3.0 ? 2.0 : r < 7.0 ? 5.0 : 10.0) * mag;
-  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1.0)
-    ticks.push_back(k * step);
-  return ticks;
-}
-
-// "0.35", "12", "2e-4": as short as the tick spacing allows.
-std::string tick_label(double v, double step) {
-  char buf[32];
-  if (std::abs(v) < 1e-12 * step) return "0";
-  if (step < 1e-3 || step >= 1e5) {
-    const int e = static_cast<int>(std::floor(std::log10(std::abs(v)) + 1e-9));
-    const double m = v / std::pow(10.0, e);
-    std::snprintf(buf, sizeof buf, "%.3ge%d", m, e);
-    return buf;
+// The font file of the frames' text; a missing or broken file is bad input (exit status 2).
+FontFile read_font(const std::string& path) {
+  try {
+    return load_font({path});
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
   }
-  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
 }
 
 std::string format(const char* fmt, double a) {
@@ -140,7 +124,7 @@ enum class Align { left, centre, right };
 struct Renderer::Impl {
   GlContext& context;
   const GladGLContext& gl;
-  std::vector<unsigned char> font_bytes;
+  FontFile font_file;
   Program particles, arrows, flat, text;
   GlName corner_vbo, disc_vbo, particle_vao;
   GlName mesh_vbo, arrow_vbo, arrow_vao;
@@ -166,7 +150,7 @@ struct Renderer::Impl {
   Impl(GlContext& ctx, const std::string& font_path)
       : context(ctx),
         gl(ctx.gl()),
-        font_bytes(read_font_file(font_path)),
+        font_file(read_font(font_path)),
         particles(gl, "particles.vert", "particles.frag"),
         arrows(gl, "arrows.vert", "flat.frag"),
         flat(gl, "flat.vert", "flat.frag"),
@@ -234,7 +218,7 @@ struct Renderer::Impl {
     auto it = atlases.find(px);
     if (it != atlases.end()) return it->second;
     Atlas a;
-    a.font = std::make_unique<FontAtlas>(font_bytes, static_cast<float>(px));
+    a.font = std::make_unique<FontAtlas>(font_file, static_cast<float>(px));
     a.texture = std::make_unique<GlName>(gl, GlName::Kind::texture);
     gl.BindTexture(GL_TEXTURE_2D, a.texture->id());
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -401,7 +385,6 @@ struct Renderer::Impl {
 
   void colour_bar(const Rect& bar, ColourMap map, const ColourScale& scale, const FrameLayout& l,
                   const Theme& th) {
-    label(scale.title, bar.x0, bar.y0 - 0.6f * l.font, l.font, th.text);
     const int segments = scale.bands > 0 ? scale.bands : 128;
     for (int k = 0; k < segments; ++k) {
       const float y_hi = bar.y1 - bar.height() * static_cast<float>(k + 1) / static_cast<float>(segments);
@@ -414,14 +397,18 @@ struct Renderer::Impl {
       }
     }
     frame(over, {bar.x0 - 1, bar.y0 - 1, bar.x1 + 1, bar.y1 + 1}, 1.0f, th.faint);
-    const auto ticks = nice_ticks(scale.min, scale.max);
-    const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : scale.max - scale.min;
+    // About five ticks, as the charts choose and label them (render/ticks.hpp); a shared power
+    // of ten of the labels ("×10⁻⁶") follows the title.
+    const Ticks ticks = linear_ticks(scale.min, scale.max, 5);
+    label(ticks.multiplier.empty() ? scale.title : scale.title + "  " + ticks.multiplier, bar.x0,
+          bar.y0 - 0.6f * l.font, l.font, th.text);
     const float tick_len = 0.35f * l.font;
     const float lift = 0.5f * atlas(l.small).font->ascent();
-    for (double v : ticks) {
+    for (std::size_t k = 0; k < ticks.major.size(); ++k) {
+      const double v = ticks.major[k];
       const float y = bar.y1 - f((v - scale.min) / (scale.max - scale.min)) * bar.height();
       rect(over, {bar.x1 + 1, y - 0.5f, bar.x1 + 1 + tick_len, y + 0.5f}, th.text);
-      label(tick_label(v, step), bar.x1 + 1.6f * tick_len, y + lift, l.small, th.text);
+      label(ticks.labels[k], bar.x1 + 1.6f * tick_len, y + lift, l.small, th.text);
     }
   }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Charts drawn to PNG by the program itself: line and marker series on linear or log axes,
 // reference lines, error bars, labelled points, a legend, and figures of several panels.
-// Text comes from stb_truetype, files from stb_image_write; nothing else. Same input, same bytes.
+// Text comes from stb_truetype, PNG files from the program's writer (render/image.hpp), tick
+// values from render/ticks.hpp; no GL. Same input, same bytes.
 //
 // Sizes given in px (line widths, marker sizes) are px of an 800 x 500 chart. A bigger image
 // scales them, and the text, by min(width / 800, height / 500): a 1600 x 1000 chart looks like
@@ -13,6 +14,9 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "render/font_file.hpp"
+#include "render/ticks.hpp"
 
 namespace fluidbed::chart {
 
@@ -86,9 +90,9 @@ class Image {
   std::vector<std::uint8_t> pixels_;
 };
 
-// Where the font is looked for, in order: $FLUIDBED_ASSETS/fonts/DejaVuSans.ttf (when set),
-// SOURCE_ASSET_DIR/fonts/DejaVuSans.ttf (when not empty), then the Debian package's copy.
-std::vector<std::string> font_search_paths(const std::string& source_asset_dir);
+// Where the font is looked for (render/font_file.hpp): $FLUIDBED_ASSETS, the source tree's
+// assets, then the Debian package's copy.
+using render::font_search_paths;
 
 // A TrueType font held in memory. Immutable, cheap to copy, safe to share between threads.
 class Font {
@@ -108,17 +112,10 @@ class Font {
   std::shared_ptr<const Data> data_;
 };
 
-// Tick marks of one axis.
-struct Ticks {
-  std::vector<double> major, minor;  // data units, ascending
-  std::vector<std::string> labels;   // one per major tick (UTF-8)
-  std::string multiplier;  // e.g. "×10⁻⁴": the labels read value / 10⁻⁴; empty if none
-};
-// Steps of 1, 2 or 5 x 10^k inside [lo, hi], about TARGET of them (at least 2 when possible).
-Ticks linear_ticks(double lo, double hi, int target);
-// Decades inside [lo, hi] (0 < lo < hi), at most MAX_MAJOR of them (every 2nd, 3rd, ... decade
-// when more), minor ticks at 2..9 x 10^k; 1-2-5 ticks when fewer than two decades are inside.
-Ticks log_ticks(double lo, double hi, int max_major);
+// Tick marks of one axis: the algorithm the frames' colour bars use too (render/ticks.hpp).
+using render::linear_ticks;
+using render::log_ticks;
+using render::Ticks;
 
 struct Box {
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // px, y down

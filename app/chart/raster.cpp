@@ -1,20 +1,13 @@
 // Pixels: the image, its PNG file, and anti-aliased coverage of lines, rectangles and markers.
 #include "chart/raster.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-// File-local copies of stb_image_write, so that another part of the program may compile its own.
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#include <stb_image_write.h>
+#include "render/image.hpp"
 
 namespace fluidbed::chart {
 
@@ -81,39 +74,13 @@ void Image::paste(const Image& src, int x, int y) {
   }
 }
 
+// The program's one PNG writer (render/image.hpp), as for the frames.
 std::vector<std::uint8_t> Image::encode_png() const {
-  std::vector<std::uint8_t> out;
-  const auto append = [](void* context, void* data, int size) {
-    auto* bytes = static_cast<std::vector<std::uint8_t>*>(context);
-    const auto* p = static_cast<const std::uint8_t*>(data);
-    bytes->insert(bytes->end(), p, p + size);
-  };
-  if (stbi_write_png_to_func(append, &out, width_, height_, 3, pixels_.data(), width_ * 3) == 0) {
-    throw std::runtime_error("cannot encode a " + std::to_string(width_) + " x " +
-                             std::to_string(height_) + " PNG");
-  }
-  return out;
+  return render::encode_png(width_, height_, pixels_.data());
 }
 
 void Image::write_png(const std::string& path) const {
-  const std::vector<std::uint8_t> bytes = encode_png();
-  // A name of this process's own beside the file: a failed write leaves nothing half-written.
-  const std::string tmp = path + ".partial." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (out)
-      out.write(reinterpret_cast<const char*>(bytes.data()),
-                static_cast<std::streamsize>(bytes.size()));
-    if (out) out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error("cannot write PNG " + path);
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot write PNG " + path);
-  }
+  render::write_png(path, width_, height_, pixels_.data());
 }
 
 }  // namespace fluidbed::chart

@@ -1,75 +1,40 @@
 // Fonts and text: loading DejaVu Sans, setting UTF-8 lines with kerning, drawing them.
 #include "chart/text.hpp"
 
+#include <stb_truetype.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <iterator>
-#include <stdexcept>
 #include <string>
 
-// File-local copies of stb_truetype, so that another part of the program may compile its own.
-#define STB_TRUETYPE_IMPLEMENTATION
-#define STBTT_STATIC
-#include <stb_truetype.h>
+#include "render/font_file.hpp"
 
 namespace fluidbed::chart {
 
 struct Font::Data {
-  std::string path;
-  std::vector<unsigned char> bytes;
-  stbtt_fontinfo info{};                    // points into bytes
+  render::FontFile file;
+  stbtt_fontinfo info{};                    // points into file.bytes
   double ascent = 0, descent = 0, cap = 0;  // font units, descent positive
   double line = 1;  // font units of ascent + descent: a font of size s px scales by s / line
 };
 
-std::vector<std::string> font_search_paths(const std::string& source_asset_dir) {
-  constexpr const char* kFile = "fonts/DejaVuSans.ttf";
-  std::vector<std::string> paths;
-  if (const char* env = std::getenv("FLUIDBED_ASSETS"); env != nullptr && *env != '\0') {
-    paths.push_back(std::string(env) + "/" + kFile);
-  }
-  if (!source_asset_dir.empty()) paths.push_back(source_asset_dir + "/" + kFile);
-  paths.emplace_back("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf");
-  return paths;
-}
-
 Font Font::load(const std::vector<std::string>& paths) {
-  std::string tried;
-  for (const std::string& path : paths) {
-    if (!tried.empty()) tried += ", ";
-    tried += path;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      tried += " (missing)";
-      continue;
-    }
-    auto data = std::make_shared<Data>();
-    data->path = path;
-    data->bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    // 12 bytes: a TrueType file's offset table, which stb reads before checking anything.
-    const int offset =
-        data->bytes.size() < 12 ? -1 : stbtt_GetFontOffsetForIndex(data->bytes.data(), 0);
-    if (offset < 0 || stbtt_InitFont(&data->info, data->bytes.data(), offset) == 0) {
-      tried += " (not a TrueType font)";
-      continue;
-    }
-    int ascent = 0, descent = 0, gap = 0;
-    stbtt_GetFontVMetrics(&data->info, &ascent, &descent, &gap);
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    stbtt_GetCodepointBox(&data->info, 'H', &x0, &y0, &x1, &y1);
-    data->ascent = ascent;
-    data->descent = -descent;
-    data->cap = y1 > 0 ? y1 : 0.7 * ascent;
-    data->line = std::max(1, ascent - descent);
-    return Font(std::move(data));
-  }
-  throw std::runtime_error("no usable font for the charts; tried " + tried);
+  auto data = std::make_shared<Data>();
+  data->file = render::load_font(paths);  // read and checked to be a TrueType font
+  stbtt_InitFont(&data->info, data->file.bytes.data(), data->file.offset);
+  int ascent = 0, descent = 0, gap = 0;
+  stbtt_GetFontVMetrics(&data->info, &ascent, &descent, &gap);
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  stbtt_GetCodepointBox(&data->info, 'H', &x0, &y0, &x1, &y1);
+  data->ascent = ascent;
+  data->descent = -descent;
+  data->cap = y1 > 0 ? y1 : 0.7 * ascent;
+  data->line = std::max(1, ascent - descent);
+  return Font(std::move(data));
 }
 
 const std::string& Font::path() const {
-  return data_->path;
+  return data_->file.path;
 }
 
 }  // namespace fluidbed::chart
@@ -79,32 +44,6 @@ namespace fluidbed::chart::detail {
 namespace {
 
 constexpr int kQuarters = 4;  // glyphs are placed to a quarter pixel
-
-// The next code point of UTF8 from I; a malformed byte reads as U+FFFD.
-int next_code_point(std::string_view s, std::size_t& i) {
-  const auto byte = [&s](std::size_t k) { return static_cast<unsigned char>(s[k]); };
-  const unsigned char c = byte(i++);
-  if (c < 0x80) return c;
-  int extra = 0;
-  int cp = 0;
-  if ((c & 0xE0) == 0xC0) {
-    extra = 1;
-    cp = c & 0x1F;
-  } else if ((c & 0xF0) == 0xE0) {
-    extra = 2;
-    cp = c & 0x0F;
-  } else if ((c & 0xF8) == 0xF0) {
-    extra = 3;
-    cp = c & 0x07;
-  } else {
-    return 0xFFFD;
-  }
-  for (int k = 0; k < extra; ++k) {
-    if (i >= s.size() || (byte(i) & 0xC0) != 0x80) return 0xFFFD;
-    cp = (cp << 6) | (byte(i++) & 0x3F);
-  }
-  return cp;
-}
 
 }  // namespace
 
@@ -124,7 +63,7 @@ std::vector<TextPainter::Placed> TextPainter::shape(std::string_view utf8, doubl
   double pen = 0.0;
   int previous = 0;
   for (std::size_t i = 0; i < utf8.size();) {
-    const int index = stbtt_FindGlyphIndex(&font_->info, next_code_point(utf8, i));
+    const int index = stbtt_FindGlyphIndex(&font_->info, render::next_code_point(utf8, i));
     if (previous != 0) pen += scale * stbtt_GetGlyphKernAdvance(&font_->info, previous, index);
     placed.push_back({index, pen});
     int glyph_advance = 0, bearing = 0;

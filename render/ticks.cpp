@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "chart/chart.hpp"
+#include "render/ticks.hpp"
 
-namespace fluidbed::chart {
+namespace fluidbed::render {
 
 namespace {
 
@@ -164,4 +164,4 @@ Ticks log_ticks(double lo, double hi, int max_major) {
   return t;
 }
 
-}  // namespace fluidbed::chart
+}  // namespace fluidbed::render
