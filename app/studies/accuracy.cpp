@@ -87,13 +87,8 @@ struct DropRun {
 };
 
 Settings drop_settings(const Variant& v, double dt, double damping, double gap) {
-  Settings s;
-  s.scene.name = "drop";
-  s.scene.kind = "drop";
-  s.particles.count = 1;
-  s.particles.placement = "single";
+  Settings s = drop_scene(0.002 + gap);
   s.particles.x = 0.075;
-  s.particles.y = 0.002 + gap;
   s.time.dt = dt;
   s.time.integrator = v.integrator;
   s.contact.displacement = v.displacement;
@@ -341,27 +336,48 @@ FailPoints fail_points(const std::vector<StepResult>& rs) {
 
 std::string mult_text(double m) { return std::isnan(m) ? "none in range" : fmt("%gx", m); }
 
-Report accuracy_study(const Options& o, const Config& c, const std::string& chart_prefix) {
-  Report rep;
-  const double m = paper_particle_mass();
-  const double tc = contact_duration(50000.0, m), tc9 = tc / 9.0;
+// Everything the study measured, by variant and step.
+struct Accuracy {
+  explicit Accuracy(const Config& c) : config(c) {}
+  const Config& config;
+  double m = 0.0;               // kg, the paper's sphere
+  double tc = 0.0, tc9 = 0.0;   // s: its contact duration with a wall, and t_c / 9
+  RestState rest;               // the settled packing the energy tests start from
+  std::vector<std::vector<StepResult>> res;  // [variant][multiplier]
+  std::vector<double> limits;   // each variant's largest stable multiplier (NaN: none)
+};
+
+// The series of one variant on the study's charts: its name, line with markers, its shape.
+chart::Series variant_series(const Config& c, std::size_t v) {
+  chart::Series s;
+  s.label = c.variants[v].short_label(c.by_contact);
+  s.mark = chart::Mark::LinePoints;
+  s.shape = static_cast<chart::Shape>(v % 4);
+  return s;
+}
+
+Accuracy measure(const Options& o, const Config& c) {
+  Accuracy a(c);
+  a.m = paper_particle_mass();
+  a.tc = contact_duration(50000.0, a.m);
+  a.tc9 = a.tc / 9.0;
   if (o.log) o.log("settling the packing for the energy test (" + std::to_string(c.rest_count) +
                    " frictionless spheres, " + fmt("%g s", c.settle_time) + ")");
-  const RestState rest = make_rest_state(c, o.out);
+  a.rest = make_rest_state(c, o.out);
 
   const std::size_t nv = c.variants.size(), nm = c.multipliers.size();
   // Heaviest points (the smallest steps) first.
   std::vector<std::size_t> order(nv * nm);
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return c.multipliers[a % nm] < c.multipliers[b % nm];
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) {
+    return c.multipliers[p % nm] < c.multipliers[q % nm];
   });
-  std::mutex log_mutex;
-  const std::vector<StepResult> flat = RunPool(o.workers).map<StepResult>(nv * nm, [&](std::size_t k) {
+  const std::vector<StepResult> flat = RunPool(o.workers).map<StepResult>(
+      nv * nm,
+      [&](std::size_t k) {
         const Variant& v = c.variants[k / nm];
-        StepResult r = measure_step(c, rest, v, c.multipliers[k % nm]);
+        StepResult r = measure_step(c, a.rest, v, c.multipliers[k % nm]);
         if (o.log) {
-          std::lock_guard lock(log_mutex);
           o.log("  " + v.label() + fmt(" dt = %.3gx", r.mult) +
                 (r.stable() ? fmt(": drop error %.3g", r.drop_err) +
                                   fmt(", restitution error %.3g", r.e_err) +
@@ -372,30 +388,39 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
         return r;
       },
       order);
-  std::vector<std::vector<StepResult>> res(nv);
-  for (std::size_t k = 0; k < flat.size(); ++k) res[k / nm].push_back(flat[k]);
+  a.res.resize(nv);
+  for (std::size_t k = 0; k < flat.size(); ++k) a.res[k / nm].push_back(flat[k]);
+  for (const auto& rs : a.res) a.limits.push_back(largest_stable(rs));
+  return a;
+}
 
-  // study.csv
+Table table(const Accuracy& a) {
+  const Config& c = a.config;
+  const auto& res = a.res;
+  const std::size_t nv = c.variants.size();
   Table t({"variant", "integrator", "displacement", "dt_s", "dt_over_tc9", "dt_over_tc",
            "drop_height_ratio_10", "drop_error", "restitution", "restitution_analytic",
            "restitution_error", "restitution_spread", "energy_growth_mgd", "energy_drift_mgd",
-           "stable", "cost_cpu_s_per_sim_s", "cost_wall_s_per_sim_s", "particle_steps_per_s", "status",
-           "failure_kind",
-           "failure"});
-  const double e_th = analytic_restitution(50000.0, 0.15, m);
+           "stable", "cost_cpu_s_per_sim_s", "cost_wall_s_per_sim_s", "particle_steps_per_s",
+           "status", "failure_kind", "failure"});
+  const double e_th = analytic_restitution(50000.0, 0.15, a.m);
   for (std::size_t v = 0; v < nv; ++v)
     for (const auto& r : res[v]) {
       t.add({c.variants[v].label(), c.variants[v].integrator, c.variants[v].displacement,
-             num(r.dt), num(r.mult), num(r.dt / tc), num(r.drop_ratio), num(r.drop_err),
+             num(r.dt), num(r.mult), num(r.dt / a.tc), num(r.drop_ratio), num(r.drop_err),
              num(r.e_mean), num(e_th), num(r.e_err), num(r.e_spread), num(r.growth),
              num(r.drift), r.stable() ? "yes" : "no", num(r.cost), num(r.cost_wall), num(r.psteps),
-             r.failed() ? "failed" : "ok", r.kind(), r.error()});
-      rep.points++;
-      rep.failed += r.failed() ? 1 : 0;
+             r.failed() ? "failed" : "ok", r.kind(), r.error()},
+            r.failed());
     }
-  write_text((fs::path(o.out) / "study.csv").string(), t.csv());
+  return t;
+}
 
-  // Charts.
+// Four panels against the step: drop error, restitution error, energy change, cost.
+std::string accuracy_chart(const Accuracy& a, const std::string& dir, const std::string& prefix) {
+  const Config& c = a.config;
+  const auto& res = a.res;
+  const std::size_t nv = c.variants.size();
   auto panel = [&](const std::string& title, const std::string& ylabel, auto value) {
     chart::Chart ch;
     ch.title = title;
@@ -404,10 +429,7 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
     ch.y.label = ylabel;
     ch.y.log = true;
     for (std::size_t v = 0; v < nv; ++v) {
-      chart::Series s;
-      s.label = c.variants[v].short_label(c.by_contact);
-      s.mark = chart::Mark::LinePoints;
-      s.shape = static_cast<chart::Shape>(v % 4);
+      chart::Series s = variant_series(c, v);
       for (const auto& r : res[v]) {
         s.x.push_back(r.mult);
         s.y.push_back(r.stable() ? value(r) : NAN);
@@ -428,12 +450,20 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
             [](const StepResult& r) { return r.cost; })};
   acc[1].hlines.push_back({kRestitutionTolerance, "0.01", {150, 150, 150}, true, 1.0});
   acc[0].hlines.push_back({kDropTolerance, "1 %", {150, 150, 150}, true, 1.0});
-  rep.charts.push_back(write_grid(o.out, chart_prefix + "accuracy.png", acc, 2, 800, 520,
-                                  "Accuracy and cost against the time step (t_c = " +
-                                      fmt("%.3g s", tc) + ", pi sqrt(m / kappa), sphere-wall)"));
+  return write_grid(dir, prefix + "accuracy.png", acc, 2, 800, 520,
+                    "Accuracy and cost against the time step (t_c = " + fmt("%.3g s", a.tc) +
+                        ", pi sqrt(m / kappa), sphere-wall)");
+}
 
+// The largest energy gain against the step, failed runs marked at the top.
+std::string stability_chart(const Accuracy& a, const std::string& dir, const std::string& prefix) {
+  const Config& c = a.config;
+  const auto& res = a.res;
+  const std::size_t nv = c.variants.size();
   chart::Chart st;
-  st.title = "Stability: largest energy gain of a packing at rest (failed runs at the top; no gain: no point)";
+  st.title =
+      "Stability: largest energy gain of a packing at rest (failed runs at the top; no gain: no "
+      "point)";
   st.x.label = "time step / (t_c / 9)";
   st.x.log = true;
   st.y.label = "largest energy gain per particle (m g D)";
@@ -441,10 +471,7 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
   const double cap = 10.0;
   st.y.max = 30.0;
   for (std::size_t v = 0; v < nv; ++v) {
-    chart::Series s, f;
-    s.label = c.variants[v].short_label(c.by_contact);
-    s.mark = chart::Mark::LinePoints;
-    s.shape = static_cast<chart::Shape>(v % 4);
+    chart::Series s = variant_series(c, v), f;
     s.colour = chart::palette(v);
     f.label = "";
     f.mark = chart::Mark::Points;
@@ -464,16 +491,25 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
   // One marker line per distinct largest stable step, naming every variant that has it.
   std::map<double, std::vector<std::size_t>> by_limit;
   for (std::size_t v = 0; v < nv; ++v)
-    if (const double ls = largest_stable(res[v]); !std::isnan(ls)) by_limit[ls].push_back(v);
+    if (const double ls = a.limits[v]; !std::isnan(ls)) by_limit[ls].push_back(v);
   for (const auto& [ls, vs] : by_limit) {
     std::string names;
-    for (std::size_t v : vs) names += (names.empty() ? "" : ", ") + c.variants[v].short_label(c.by_contact);
+    for (std::size_t v : vs)
+      names += (names.empty() ? "" : ", ") + c.variants[v].short_label(c.by_contact);
     st.vlines.push_back({ls, "largest stable " + fmt("%gx: ", ls) + names,
-                         vs.size() == 1 ? chart::palette(vs[0]) : chart::Rgb{60, 60, 60}, true, 2.0});
+                         vs.size() == 1 ? chart::palette(vs[0]) : chart::Rgb{60, 60, 60}, true,
+                         2.0});
   }
   st.hlines.push_back({kGrowthLimit, "instability threshold", {150, 150, 150}, true, 1.0});
-  rep.charts.push_back(write_chart(o.out, chart_prefix + "stability.png", st));
+  return write_chart(dir, prefix + "stability.png", st);
+}
 
+// Drop-test error against cost, each point labelled with its step.
+std::string speed_accuracy_chart(const Accuracy& a, const std::string& dir,
+                                 const std::string& prefix) {
+  const Config& c = a.config;
+  const auto& res = a.res;
+  const std::size_t nv = c.variants.size();
   chart::Chart sa;
   sa.title = "Speed against accuracy: drop-test error against cost (labels: step / (t_c / 9))";
   sa.x.label = "cost: CPU s per simulated s (packing of " + std::to_string(c.rest_count) + ")";
@@ -481,10 +517,7 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
   sa.y.label = "|height after 10 bounces / drop height - 1|";
   sa.y.log = true;
   for (std::size_t v = 0; v < nv; ++v) {
-    chart::Series s;
-    s.label = c.variants[v].short_label(c.by_contact);
-    s.mark = chart::Mark::LinePoints;
-    s.shape = static_cast<chart::Shape>(v % 4);
+    chart::Series s = variant_series(c, v);
     for (const auto& r : res[v]) {
       if (!r.stable() || !(r.drop_err > 0.0)) continue;
       s.x.push_back(r.cost);
@@ -493,15 +526,20 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
     }
     sa.series.push_back(s);
   }
-  rep.charts.push_back(write_chart(o.out, chart_prefix + "speed_accuracy.png", sa));
+  return write_chart(dir, prefix + "speed_accuracy.png", sa);
+}
 
-  // Findings.
+std::string findings(const Accuracy& a) {
+  const Config& c = a.config;
+  const auto& res = a.res;
+  const std::size_t nv = c.variants.size();
+  const double e_th = analytic_restitution(50000.0, 0.15, a.m);
   std::ostringstream md;
-  md << "Time steps are multiples of t_c / 9 = " << fmt("%.4g s", tc9) << ", with the contact "
-     << "duration t_c = pi sqrt(m / kappa) = " << fmt("%.4g s", tc)
-     << " of a sphere against a wall (m = " << fmt("%.4g kg", m)
+  md << "Time steps are multiples of t_c / 9 = " << fmt("%.4g s", a.tc9) << ", with the contact "
+     << "duration t_c = pi sqrt(m / kappa) = " << fmt("%.4g s", a.tc)
+     << " of a sphere against a wall (m = " << fmt("%.4g kg", a.m)
      << ", kappa = 50,000 N/m; a pair of spheres lasts t_c / sqrt 2). The paper's step, 1.5e-5 s, "
-     << "is " << fmt("%.2fx", 1.5e-5 / tc9) << ".\n\n";
+     << "is " << fmt("%.2fx", 1.5e-5 / a.tc9) << ".\n\n";
   md << "- drop test: a sphere dropped at " << kDropSpeed
      << " m/s impact speed, eta = 0; error = |apex after the 10th bounce / drop height - 1|, "
         "mean over " << c.drop_phases << " contact phases (drop heights spread over one step's "
@@ -509,10 +547,10 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
   md << "- restitution: eta = 0.15, the first bounce, mean over " << c.phases
      << " contact phases; analytic e = " << fmt("%.4f", e_th) << ".\n";
   md << "- packing: " << c.rest_count << " frictionless spheres settled in a box "
-     << c.rest_width << " m wide (kinetic energy left " << fmt("%.2g", rest.kinetic_per_particle)
-     << " m g D per particle, solid fraction " << fmt("%.3f", rest.solid_fraction)
+     << c.rest_width << " m wide (kinetic energy left " << fmt("%.2g", a.rest.kinetic_per_particle)
+     << " m g D per particle, solid fraction " << fmt("%.3f", a.rest.solid_fraction)
      << "), then " << c.energy_time
-     << " s undamped; energy change per particle in m g D = " << fmt("%.3g J", m * 9.81 * 0.004)
+     << " s undamped; energy change per particle in m g D = " << fmt("%.3g J", a.m * 9.81 * 0.004)
      << "; unstable when the run fails or the energy gains more than " << kGrowthLimit
      << " m g D per particle. Cost: seconds per simulated second of this packing on one thread "
      << "(its CPU time, the energy sampling excluded: equal to wall seconds on an idle core, and "
@@ -520,14 +558,12 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
   md << "| variant | largest stable step | = dt | = t_c x | drop error at 1x | restitution error "
         "at 1x | energy change at 1x (m g D) | cost at 1x (s/s) | drop error > 1 % from | "
         "restitution error > 0.01 from |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  std::vector<double> limits(nv);
   for (std::size_t v = 0; v < nv; ++v) {
-    const double ls = largest_stable(res[v]);
-    limits[v] = ls;
+    const double ls = a.limits[v];
     const StepResult* one = at_mult(res[v], 1.0);
     const FailPoints f = fail_points(res[v]);
     md << "| " << c.variants[v].label() << " | " << mult_text(ls) << " | "
-       << (std::isnan(ls) ? "-" : fmt("%.3g s", ls * tc9)) << " | "
+       << (std::isnan(ls) ? "-" : fmt("%.3g s", ls * a.tc9)) << " | "
        << (std::isnan(ls) ? "-" : fmt("%.2f", ls / 9.0)) << " | "
        << (one && one->stable() ? fmt("%.2g", one->drop_err) : "failed") << " | "
        << (one && one->stable() ? fmt("%.2g", one->e_err) : "failed") << " | "
@@ -545,61 +581,12 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
        << (first ? " (" + first->error() + ")" : "");
   }
   md << ".\n";
-
-  // Which variant. Errors at t_c / 9, each over its tolerance and added: the score. The paper's
-  // (the first variant, the default) is kept unless another, at least as stable, scores less
-  // than half of it: single-step errors move with the contact phase by tens of per cent, so a
-  // smaller difference is not a reason to change a default.
-  auto score = [&](std::size_t v) {
-    const StepResult* one = at_mult(res[v], 1.0);
-    return one && one->stable() ? one->drop_err / kDropTolerance + one->e_err / kRestitutionTolerance
-                                : INFINITY;
-  };
-  std::size_t best = 0;
-  for (std::size_t v = 1; v < nv; ++v)
-    if (score(v) < 0.5 * score(best) && !(largest_stable(res[v]) < largest_stable(res[best])))
-      best = v;
-  // Its recommended step: the largest at which it is stable with accepted errors, and at most
-  // two thirds of its largest stable step (a margin for denser contacts than the test's).
-  double accurate = NAN;
-  for (const auto& r : res[best]) {
-    if (!r.stable() || r.drop_err > kDropTolerance || r.e_err > kRestitutionTolerance) break;
-    accurate = r.mult;
-  }
-  double rec = accurate;
-  if (!std::isnan(limits[best])) {
-    double margin = NAN;
-    for (double mm : c.multipliers)
-      if (mm <= limits[best] * 2.0 / 3.0 + 1e-12) margin = mm;
-    if (!std::isnan(margin)) rec = std::isnan(rec) ? margin : std::min(rec, margin);
-  }
-  rep.findings = md.str();
-  std::ostringstream adv;
-  adv << "Choose **" << c.variants[best].label() << "**. Rule: at t_c / 9 each variant's "
-      << "drop-test error over 1 % plus its restitution error over 0.01 is its score; the paper's "
-      << c.variants[0].label() << " is kept unless another, at least as stable, scores under half "
-      << "of it. Scores:";
-  for (std::size_t v = 0; v < nv; ++v)
-    adv << (v ? ";" : "") << " " << c.variants[v].short_label(c.by_contact) << " "
-        << fmt("%.2g", score(v));
-  adv << ". ";
-  if (!std::isnan(rec))
-    adv << "With it, use a step of at most " << fmt("%gx", rec) << " t_c / 9 = "
-        << fmt("%.3g s", rec * tc9)
-        << " (rule: the largest step whose drop error stays below 1 % and restitution error "
-           "below 0.01, and no more than 2/3 of the largest stable step, "
-        << mult_text(limits[best]) << "). ";
-  adv << "The paper's 1.5e-5 s (" << fmt("%.2fx", 1.5e-5 / tc9) << ") "
-      << (!std::isnan(rec) && 1.5e-5 / tc9 <= rec + 0.02 ? "is inside that range"
-                                                         : "is outside that range")
-      << "; a smaller step buys accuracy at a cost that grows as 1/dt (the speed-accuracy chart).";
-  rep.advice = adv.str();
   // Study 1's note on symplectic Euler against the predictor-corrector.
   if (!c.by_contact) {
     double pc = NAN, se = NAN;
     for (std::size_t v = 0; v < nv; ++v) {
-      if (c.variants[v].integrator == "newmark") pc = limits[v];
-      if (c.variants[v].integrator == "symplectic_euler") se = limits[v];
+      if (c.variants[v].integrator == "newmark") pc = a.limits[v];
+      if (c.variants[v].integrator == "symplectic_euler") se = a.limits[v];
     }
     std::ostringstream note;
     note << "\nSymplectic Euler's largest stable step " << mult_text(se)
@@ -615,8 +602,73 @@ Report accuracy_study(const Options& o, const Config& c, const std::string& char
               "differs in accuracy (first order), not in stability, which is what the data "
               "shows.\n";
     }
-    rep.findings += note.str();
+    md << note.str();
   }
+
+  return md.str();
+}
+
+std::string advice(const Accuracy& a) {
+  const Config& c = a.config;
+  const auto& res = a.res;
+  const std::size_t nv = c.variants.size();
+  // Which variant. Errors at t_c / 9, each over its tolerance and added: the score. The paper's
+  // (the first variant, the default) is kept unless another, at least as stable, scores less
+  // than half of it: single-step errors move with the contact phase by tens of per cent, so a
+  // smaller difference is not a reason to change a default.
+  auto score = [&](std::size_t v) {
+    const StepResult* one = at_mult(res[v], 1.0);
+    return one && one->stable() ? one->drop_err / kDropTolerance + one->e_err / kRestitutionTolerance
+                                : INFINITY;
+  };
+  std::size_t best = 0;
+  for (std::size_t v = 1; v < nv; ++v)
+    if (score(v) < 0.5 * score(best) && !(a.limits[v] < a.limits[best]))
+      best = v;
+  // Its recommended step: the largest at which it is stable with accepted errors, and at most
+  // two thirds of its largest stable step (a margin for denser contacts than the test's).
+  double accurate = NAN;
+  for (const auto& r : res[best]) {
+    if (!r.stable() || r.drop_err > kDropTolerance || r.e_err > kRestitutionTolerance) break;
+    accurate = r.mult;
+  }
+  double rec = accurate;
+  if (!std::isnan(a.limits[best])) {
+    double margin = NAN;
+    for (double mm : c.multipliers)
+      if (mm <= a.limits[best] * 2.0 / 3.0 + 1e-12) margin = mm;
+    if (!std::isnan(margin)) rec = std::isnan(rec) ? margin : std::min(rec, margin);
+  }
+  std::ostringstream adv;
+  adv << "Choose **" << c.variants[best].label() << "**. Rule: at t_c / 9 each variant's "
+      << "drop-test error over 1 % plus its restitution error over 0.01 is its score; the paper's "
+      << c.variants[0].label() << " is kept unless another, at least as stable, scores under half "
+      << "of it. Scores:";
+  for (std::size_t v = 0; v < nv; ++v)
+    adv << (v ? ";" : "") << " " << c.variants[v].short_label(c.by_contact) << " "
+        << fmt("%.2g", score(v));
+  adv << ". ";
+  if (!std::isnan(rec))
+    adv << "With it, use a step of at most " << fmt("%gx", rec) << " t_c / 9 = "
+        << fmt("%.3g s", rec * a.tc9)
+        << " (rule: the largest step whose drop error stays below 1 % and restitution error "
+           "below 0.01, and no more than 2/3 of the largest stable step, "
+        << mult_text(a.limits[best]) << "). ";
+  adv << "The paper's 1.5e-5 s (" << fmt("%.2fx", 1.5e-5 / a.tc9) << ") "
+      << (!std::isnan(rec) && 1.5e-5 / a.tc9 <= rec + 0.02 ? "is inside that range"
+                                                           : "is outside that range")
+      << "; a smaller step buys accuracy at a cost that grows as 1/dt (the speed-accuracy chart).";
+  return adv.str();
+}
+
+Report accuracy_study(const Options& o, const Config& c, const std::string& chart_prefix) {
+  const Accuracy a = measure(o, c);
+  Report rep;
+  write_table(o.out, table(a), rep);
+  rep.charts = {accuracy_chart(a, o.out, chart_prefix), stability_chart(a, o.out, chart_prefix),
+                speed_accuracy_chart(a, o.out, chart_prefix)};
+  rep.findings = findings(a);
+  rep.advice = advice(a);
   return rep;
 }
 

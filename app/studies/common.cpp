@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 
@@ -56,7 +57,14 @@ Report run_study(const Info& info, const Options& o) {
   fs::create_directories(o.out, ec);
   if (ec) throw InputError("cannot create output folder " + o.out + ": " + ec.message());
   const auto start = std::chrono::steady_clock::now();
-  Report r = info.run(o);
+  Options safe = o;  // the log, for the points' threads
+  std::mutex log_mutex;
+  if (o.log)
+    safe.log = [&](const std::string& line) {
+      std::lock_guard lock(log_mutex);
+      o.log(line);
+    };
+  Report r = info.run(safe);
   r.name = info.name;
   r.title = info.title;
   r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -164,11 +172,32 @@ Settings bed_scene(Size size, const std::vector<std::string>& overrides) {
   return load_scene(asset_dir() + "/scenes/xu_yu_1997.toml", all);
 }
 
-void Table::add(const std::vector<std::string>& row) {
+void Table::add(const std::vector<std::string>& row, bool failed) {
   if (row.size() != columns_.size())
     throw std::logic_error("study table: a row of " + std::to_string(row.size()) +
                            " values for " + std::to_string(columns_.size()) + " columns");
   rows_.push_back(row);
+  failed_ += failed ? 1 : 0;
+}
+
+void write_table(const std::string& dir, const Table& t, Report& rep) {
+  write_text((fs::path(dir) / "study.csv").string(), t.csv());
+  rep.points += static_cast<int>(t.rows());
+  rep.failed += t.failed();
+}
+
+double json_number(const nlohmann::json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+Settings drop_scene(double y) {
+  Settings s;
+  s.scene.name = "drop";
+  s.scene.kind = "drop";
+  s.particles.count = 1;
+  s.particles.placement = "single";
+  s.particles.y = y;
+  return s;
 }
 
 std::string Table::csv() const {

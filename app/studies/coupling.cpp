@@ -86,14 +86,25 @@ std::vector<CouplingSetting> settings_for(Size size) {
   return v;
 }
 
-}  // namespace
+// What the study measured: every setting's jetted bed and fixed-bed U_mf, and the reference's.
+struct Coupling {
+  bool tiny = false;
+  double until = 0.0, averaging = 0.0;  // s, the jetted bed's run and where its mean starts
+  double fixed_time = 0.0;              // s of gas through the fixed bed per secant step
+  std::vector<CouplingResult> res;      // the reference first, then the paper's settings
+  double dp_ref = NAN, umf_ref = NAN;   // Pa, m/s: the reference's
+  double noise = NAN;  // 2 standard errors of the reference's mean dp, over that mean
+};
 
-Report coupling_study(const Options& o) {
-  Report rep;
-  const bool tiny = o.size == Size::Tiny;
-  const double until = tiny ? 0.25 : 1.5, averaging = tiny ? 0.1 : 0.5;
+Coupling measure(const Options& o) {
+  Coupling m;
+  m.tiny = o.size == Size::Tiny;
+  const double until = m.tiny ? 0.25 : 1.5, averaging = m.tiny ? 0.1 : 0.5;
+  m.until = until;
+  m.averaging = averaging;
   // s of gas through the fixed bed: many gas response times (~1e-4 s), steady to 4 digits.
-  const double fixed_time = tiny ? 0.015 : 0.03;
+  const double fixed_time = m.tiny ? 0.015 : 0.03;
+  m.fixed_time = fixed_time;
   Settings base = bed_scene(o.size);
   base.diagnostics.averaging_start = averaging;
   if (o.log) o.log("packed bed (cached after the first time)");
@@ -101,8 +112,7 @@ Report coupling_study(const Options& o) {
   base.particles.placement = "state";
   base.particles.state_file = packed;
   const std::vector<CouplingSetting> sets = settings_for(o.size);
-  std::mutex log_mutex;
-  const auto res = RunPool(o.workers).map<CouplingResult>(sets.size(), [&](std::size_t i) {
+  m.res = RunPool(o.workers).map<CouplingResult>(sets.size(), [&](std::size_t i) {
     CouplingResult r;
     r.set = sets[i];
     const Settings s = with_coupling(base, sets[i]);
@@ -130,7 +140,6 @@ Report coupling_study(const Options& o) {
     }
     r.umf_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (o.log) {
-      std::lock_guard lock(log_mutex);
       o.log("  " + r.set.label + ": " +
             (r.bed.ok ? fmt("dp %.1f Pa", r.dp) + fmt(", cost %.3g s/s", r.cost)
                       : "bed failed: " + r.bed.error) +
@@ -138,30 +147,39 @@ Report coupling_study(const Options& o) {
     }
     return r;
   });
-  const CouplingResult& ref = res[0];
-  const double dp_ref = ref.dp, umf_ref = ref.umf;
-  const double noise = ref.bed.ok ? 2.0 * ref.dp_stderr / dp_ref : NAN;
+  const CouplingResult& ref = m.res[0];
+  m.dp_ref = ref.dp;
+  m.umf_ref = ref.umf;
+  m.noise = ref.bed.ok ? 2.0 * ref.dp_stderr / m.dp_ref : NAN;
+  return m;
+}
 
+Table table(const Coupling& m) {
+  const auto& res = m.res;
+  const double dp_ref = m.dp_ref, umf_ref = m.umf_ref;
   Table t({"setting", "axis", "particle_steps_per_gas_step", "cells_x", "cells_y", "tolerance",
            "dp_mean_pa", "dp_std_pa", "dp_mean_stderr_pa", "dp_error", "umf_model_m_s",
            "umf_error", "fixed_bed_dp_at_1p5_pa", "max_cfl", "cost_cpu_s_per_sim_s",
-           "cost_wall_s_per_sim_s", "particle_steps_per_s",
-           "sim_time_s", "averaging_start_s", "status", "failure_kind", "failure"});
+           "cost_wall_s_per_sim_s", "particle_steps_per_s", "sim_time_s", "averaging_start_s",
+           "status", "failure_kind", "failure"});
   for (const auto& r : res) {
     const bool ok = r.bed.ok && r.umf_ok;
     t.add({r.set.label, r.set.axis, std::to_string(r.set.steps), std::to_string(r.set.cells_x),
            std::to_string(r.set.cells_y), num(r.set.tolerance), num(r.dp), num(r.dp_std),
            num(r.dp_stderr), num(std::fabs(r.dp - dp_ref) / dp_ref), num(r.umf),
            num(std::fabs(r.umf - umf_ref) / umf_ref), num(r.fixed_dp), num(r.max_cfl), num(r.cost),
-           num(r.cost_wall), num(r.psteps),
-           num(until), num(averaging), ok ? "ok" : "failed",
+           num(r.cost_wall), num(r.psteps), num(m.until), num(m.averaging), ok ? "ok" : "failed",
            r.bed.ok ? (r.umf_ok ? "" : failure_kind(r.umf_error)) : r.bed.kind,
-           r.bed.ok ? r.umf_error : r.bed.error});
-    rep.points++;
-    rep.failed += ok ? 0 : 1;
+           r.bed.ok ? r.umf_error : r.bed.error},
+          !ok);
   }
-  write_text((fs::path(o.out) / "study.csv").string(), t.csv());
+  return t;
+}
 
+std::vector<std::string> charts(const Coupling& m, const std::string& dir) {
+  const auto& res = m.res;
+  const double dp_ref = m.dp_ref, umf_ref = m.umf_ref;
+  const double noise = m.noise;
   // Pareto charts: cost against error, every point labelled, the non-dominated ones joined.
   auto pareto = [&](const std::string& title, const std::string& ylabel, auto error) {
     chart::Chart c;
@@ -215,15 +233,21 @@ Report coupling_study(const Options& o) {
   chart::Chart b = pareto("U_mf of the fixed bed (model): error against cost",
                           "|U_mf - U_mf,ref| / U_mf,ref (%)",
                           [&](const CouplingResult& r) { return std::fabs(r.umf - umf_ref) / umf_ref; });
-  rep.charts.push_back(write_grid(o.out, "pareto.png", {a, b}, 2, 900, 600,
-                                  "Coupling: cost against error (reference: the paper's settings, "
-                                  "SIMPLE to 1e-7)"));
+  return {write_grid(dir, "pareto.png", {a, b}, 2, 900, 600,
+                     "Coupling: cost against error (reference: the paper's settings, SIMPLE to "
+                     "1e-7)")};
+}
 
+std::string findings(const Coupling& m) {
+  const auto& res = m.res;
+  const double dp_ref = m.dp_ref, umf_ref = m.umf_ref;
+  const CouplingResult& ref = res[0];
+  const double noise = m.noise;
   std::ostringstream md;
-  md << "The jetted bed at 2.8 m/s, " << until << " s from the packed bed, dp averaged from "
-     << averaging << " s" << (tiny ? " (tiny size: 300 particles in a bed 0.06 m wide)" : " (the paper's bed; shortened runs: 1.5 s against the paper's 12 s)")
+  md << "The jetted bed at 2.8 m/s, " << m.until << " s from the packed bed, dp averaged from "
+     << m.averaging << " s" << (m.tiny ? " (tiny size: 300 particles in a bed 0.06 m wide)" : " (the paper's bed; shortened runs: 1.5 s against the paper's 12 s)")
      << ". U_mf (model): the packed bed held fixed under a uniform inflow, the velocity at which "
-     << "the fluid force on the particles equals their weight (secant steps, " << fixed_time
+     << "the fluid force on the particles equals their weight (secant steps, " << m.fixed_time
      << " s of gas each). Reference: " << ref.set.label << ": dp " << fmt("%.1f Pa", dp_ref)
      << " (standard error of that mean from the bubbling, by batch means: "
      << fmt("%.1f Pa", ref.dp_stderr) << "), U_mf " << fmt("%.4f m/s", umf_ref)
@@ -243,8 +267,13 @@ Report coupling_study(const Options& o) {
        << (r.bed.ok ? fmt("%.3g", r.cost_wall) : "-") << " | "
        << (r.bed.ok && r.umf_ok ? "ok" : "failed: " + (r.bed.ok ? r.umf_error : r.bed.error))
        << " |\n";
-  rep.findings = md.str();
+  return md.str();
+}
 
+std::string advice(const Coupling& m) {
+  const auto& res = m.res;
+  const double dp_ref = m.dp_ref, umf_ref = m.umf_ref;
+  const double noise = m.noise;
   // Advice: per kind of setting, the cheapest (CPU) that keeps the U_mf error under 1 %, the dp
   // error within the noise (or 2 %, whichever is larger) and the largest CFL number under 0.5
   // (half the limit: a margin for jets faster than this run's).
@@ -286,7 +315,18 @@ Report coupling_study(const Options& o) {
       << "and the CFL margin. Finer gas grids are not a convergence knob: a cell must hold several "
          "particles for the porosity of eq 22 to mean anything, so the paper's 15 x 45 stays the "
          "default; the finer grids' difference from it is a model difference, shown at its cost.";
-  rep.advice = adv.str();
+  return adv.str();
+}
+
+}  // namespace
+
+Report coupling_study(const Options& o) {
+  const Coupling m = measure(o);
+  Report rep;
+  write_table(o.out, table(m), rep);
+  rep.charts = charts(m, o.out);
+  rep.findings = findings(m);
+  rep.advice = advice(m);
   return rep;
 }
 

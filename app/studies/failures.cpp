@@ -2,6 +2,7 @@
 // reported in one line of words, and recorded as a failed point (never a crash). Each case is a
 // scene with the one setting that breaks it; the study records what was detected and whether it
 // is the failure the case provokes.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -25,13 +26,11 @@ struct CaseResult {
   PointRun run;
 };
 
-Settings drop_scene() {
-  Settings s;
-  s.scene.name = "drop";
-  s.scene.kind = "drop";
-  s.particles.count = 1;
-  s.particles.placement = "single";
-  s.particles.y = 0.053;
+// The bed from the packed state, as the cases that start from it share.
+Settings packed_bed(Size size, const std::string& packed) {
+  Settings s = bed_scene(size);
+  s.particles.placement = "state";
+  s.particles.state_file = packed;
   return s;
 }
 
@@ -40,16 +39,14 @@ std::vector<Case> make_cases(Size size, const std::string& packed) {
   const double tc = contact_duration(50000.0, paper_particle_mass());
   {
     Case c{"NaN in the state", "nan", "one particle whose starting velocity is NaN (set in the settings; a scene file is refused)",
-           drop_scene(), 0.01};
+           drop_scene(0.053), 0.01};
     c.settings.particles.vy = NAN;
     cases.push_back(c);
   }
   {
     Case c{"runaway overlap", "overlap",
            "the packed bed without gas at a step of half a contact duration (time.dt = t_c / 2)",
-           bed_scene(size), 0.05};
-    c.settings.particles.placement = "state";
-    c.settings.particles.state_file = packed;
+           packed_bed(size, packed), 0.05};
     c.settings.gas.enabled = false;
     c.settings.time.dt = 0.5 * tc;
     cases.push_back(c);
@@ -57,7 +54,7 @@ std::vector<Case> make_cases(Size size, const std::string& packed) {
   {
     Case c{"particle leaves the bed", "left_bed",
            "one particle thrown up at 20 m/s out of the open top (domain.top_wall = false)",
-           drop_scene(), 0.02};
+           drop_scene(0.053), 0.02};
     c.settings.particles.y = 0.85;
     c.settings.particles.vy = 20.0;
     cases.push_back(c);
@@ -65,9 +62,7 @@ std::vector<Case> make_cases(Size size, const std::string& packed) {
   {
     Case c{"gas CFL above 1", "cfl",
            "the jetted bed with 50 particle steps per gas step (coupling.particle_steps_per_gas_step)",
-           bed_scene(size), 0.1};
-    c.settings.particles.placement = "state";
-    c.settings.particles.state_file = packed;
+           packed_bed(size, packed), 0.1};
     c.settings.coupling.particle_steps_per_gas_step = 50;
     cases.push_back(c);
   }
@@ -91,9 +86,7 @@ std::vector<Case> make_cases(Size size, const std::string& packed) {
   {
     Case c{"SIMPLE does not converge", "simple",
            "the jetted bed with one SIMPLE iteration per gas step to a tolerance of 1e-12",
-           bed_scene(size), 0.01};
-    c.settings.particles.placement = "state";
-    c.settings.particles.state_file = packed;
+           packed_bed(size, packed), 0.01};
     c.settings.gas.tolerance = 1e-12;
     c.settings.gas.max_iterations = 1;
     cases.push_back(c);
@@ -101,37 +94,32 @@ std::vector<Case> make_cases(Size size, const std::string& packed) {
   return cases;
 }
 
-}  // namespace
+bool as_expected(const CaseResult& r) { return !r.run.ok && r.run.kind == r.c.expected; }
 
-Report failures_study(const Options& o) {
-  Report rep;
+std::vector<CaseResult> measure(const Options& o) {
   if (o.log) o.log("packed bed (cached after the first time)");
   const std::string packed = packed_bed_state(bed_scene(o.size), o.log);
   const std::vector<Case> cases = make_cases(o.size, packed);
-  std::mutex log_mutex;
-  const auto res = RunPool(o.workers).map<CaseResult>(cases.size(), [&](std::size_t i) {
+  return RunPool(o.workers).map<CaseResult>(cases.size(), [&](std::size_t i) {
     CaseResult r{cases[i], run_point(cases[i].settings, cases[i].until)};
-    if (o.log) {
-      std::lock_guard lock(log_mutex);
+    if (o.log)
       o.log("  " + r.c.name + ": " + (r.run.ok ? "NOT detected (the run completed)" : r.run.error));
-    }
     return r;
   });
+}
 
+Table table(const std::vector<CaseResult>& res) {
   Table t({"case", "provoked_by", "expected_kind", "detected_kind", "detected_as_expected",
            "sim_time_s", "wall_s", "status", "failure_kind", "failure"});
-  int as_expected = 0;
-  for (const auto& r : res) {
-    const bool good = !r.run.ok && r.run.kind == r.c.expected;
-    as_expected += good ? 1 : 0;
-    t.add({r.c.name, r.c.how, r.c.expected, r.run.ok ? "none" : r.run.kind, good ? "yes" : "no",
-           num(r.c.until), num(r.run.wall), r.run.ok ? "completed" : "failed", r.run.kind,
-           r.run.error});
-    rep.points++;
-    rep.failed += r.run.ok ? 0 : 1;
-  }
-  write_text((fs::path(o.out) / "study.csv").string(), t.csv());
+  for (const auto& r : res)
+    t.add({r.c.name, r.c.how, r.c.expected, r.run.ok ? "none" : r.run.kind,
+           as_expected(r) ? "yes" : "no", num(r.c.until), num(r.run.wall),
+           r.run.ok ? "completed" : "failed", r.run.kind, r.run.error},
+          !r.run.ok);
+  return t;
+}
 
+std::vector<std::string> charts(const std::vector<CaseResult>& res, const std::string& dir) {
   chart::Chart c;
   c.title = "Failure cases: detected as provoked (1) or not (0)";
   c.x.label = "case (numbered as in summary.md)";
@@ -146,16 +134,19 @@ Report failures_study(const Options& o) {
   s.marker_size = 12.0;
   for (std::size_t i = 0; i < res.size(); ++i) {
     s.x.push_back(static_cast<double>(i + 1));
-    s.y.push_back(!res[i].run.ok && res[i].run.kind == res[i].c.expected ? 1.0 : 0.0);
+    s.y.push_back(as_expected(res[i]) ? 1.0 : 0.0);
     s.point_labels.push_back(res[i].c.expected);
   }
   c.series.push_back(s);
-  rep.charts.push_back(write_chart(o.out, "failures.png", c, 1000, 500));
+  return {write_chart(dir, "failures.png", c, 1000, 500)};
+}
 
+std::string findings(const std::vector<CaseResult>& res) {
+  const auto detected = std::count_if(res.begin(), res.end(), as_expected);
   std::ostringstream md;
   md << "Each case breaks one thing on purpose; the run is stopped by the check that belongs to "
         "it, with one line that names what went wrong, where and when. "
-     << as_expected << " of " << res.size() << " detected as provoked.\n\n"
+     << detected << " of " << res.size() << " detected as provoked.\n\n"
      << "| # | case | provoked by | detected | message |\n|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < res.size(); ++i) {
     const auto& r = res[i];
@@ -168,14 +159,30 @@ Report failures_study(const Options& o) {
         "every gas step of a run, the CFL limit and a porosity range [0.3, 1] in the run loop "
         "(engine/sim/run.cpp, RunOptions::cfl_limit and porosity_min). The integrator study adds "
         "its own: energy that grows by more than 0.1 m g D per particle in a packing at rest.\n";
-  rep.findings = md.str();
-  rep.advice =
+  return md.str();
+}
+
+std::string advice() {
+  // Nothing measured changes it: every case either stops with its sentence or is a row saying
+  // it was not detected.
+  return
       "Nothing to choose: every failure a study can meet ends its run with a sentence, and the "
       "study goes on to its next point. When a run of yours fails, the sentence names the setting "
       "to change: a CFL failure means a shorter gas step (time.dt or "
       "coupling.particle_steps_per_gas_step), a runaway overlap or a particle leaving the bed a "
       "shorter time.dt (below about t_c / 9 = 1.5e-5 s for the paper's spheres), a porosity out of "
       "range springs too soft for the bed's weight.";
+}
+
+}  // namespace
+
+Report failures_study(const Options& o) {
+  const std::vector<CaseResult> res = measure(o);
+  Report rep;
+  write_table(o.out, table(res), rep);
+  rep.charts = charts(res, o.out);
+  rep.findings = findings(res);
+  rep.advice = advice();
   return rep;
 }
 

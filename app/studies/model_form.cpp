@@ -58,14 +58,9 @@ void read_run(FormResult& f) {
   }
 }
 
-double jnum(const nlohmann::json& j, const char* key) {
-  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
-}
-
-}  // namespace
-
-Report model_form_study(const Options& o) {
-  Report rep;
+// What the study measured: for model A and the printed form, a sweep, the fixed bed's U_mf and the
+// run nearest 2.8 m/s.
+std::vector<FormResult> measure(const Options& o) {
   const bool tiny = o.size == Size::Tiny;
   Settings bed = bed_scene(o.size);
   if (o.log) o.log("packed bed (cached after the first time)");
@@ -108,7 +103,10 @@ Report model_form_study(const Options& o) {
       f.fixed_error = e.what();
     }
   }
+  return forms;
+}
 
+Table table(const std::vector<FormResult>& forms) {
   Table t({"model", "pressure_gradient_force", "branch", "u_superficial", "dp_mean_pa", "dp_std_pa",
            "dp_over_weight", "bed_weight_per_area_pa", "umf_sweep_m_s", "umf_fixed_bed_m_s",
            "plateau_pa", "wall_time_s", "status", "failure_kind", "failure"});
@@ -119,15 +117,16 @@ Report model_form_study(const Options& o) {
              p.ok ? num(p.dp_mean / f.sweep.bed_weight_per_area) : "",
              num(f.sweep.bed_weight_per_area), num(f.sweep.umf.ok ? f.sweep.umf.umf : NAN),
              num(f.fixed_umf), num(f.sweep.umf.ok ? f.sweep.umf.plateau : NAN), num(p.wall_time),
-             p.ok ? "ok" : "failed", p.ok ? "" : failure_kind(p.error), p.error});
-      rep.points++;
-      rep.failed += p.ok ? 0 : 1;
+             p.ok ? "ok" : "failed", p.ok ? "" : failure_kind(p.error), p.error},
+            !p.ok);
     };
     for (const auto& p : f.sweep.up) add(p);
     for (const auto& p : f.sweep.down) add(p);
   }
-  write_text((fs::path(o.out) / "study.csv").string(), t.csv());
+  return t;
+}
 
+std::vector<std::string> charts(const std::vector<FormResult>& forms, const std::string& dir) {
   chart::Chart sw, dt;
   sw.title = "Mean bed pressure drop against superficial velocity";
   sw.x.label = "superficial gas velocity U (m/s)";
@@ -174,9 +173,12 @@ Report model_form_study(const Options& o) {
   }
   sw.hlines.push_back({1.0, "bed weight / area", {90, 90, 90}, true, 1.5});
   dt.hlines.push_back({1.0, "bed weight / area", {90, 90, 90}, true, 1.5});
-  rep.charts.push_back(write_grid(o.out, "model_form.png", {sw, dt}, 2, 800, 560,
-                                  "Model A against the paper's printed form"));
+  return {write_grid(dir, "model_form.png", {sw, dt}, 2, 800, 560,
+                     "Model A against the paper's printed form")};
+}
 
+std::string findings(const std::vector<FormResult>& forms, Size size) {
+  const bool tiny = size == Size::Tiny;
   std::ostringstream md;
   md << "Sweeps of " << forms[0].options.velocities.size() << " (model A) and "
      << forms[1].options.velocities.size() << " (printed form) velocities up to "
@@ -195,13 +197,15 @@ Report model_form_study(const Options& o) {
        << (f.sweep.umf.ok ? fmt("%.2f m/s", f.sweep.umf.umf) : "not found: " + f.sweep.umf.why)
        << " | " << (std::isfinite(f.fixed_umf) ? fmt("%.3f m/s", f.fixed_umf) : "failed: " + f.fixed_error)
        << " | " << (f.sweep.umf.ok ? fmt("%.2f", f.sweep.umf.plateau / w) : "-") << " | "
-       << fmt("%.2f", jnum(f.at28, "dp_std_pa") / jnum(f.at28, "dp_mean_pa")) << " | "
-       << fmt("%.3g s", jnum(f.at28, "dp_dominant_period_s")) << " | "
-       << fmt("%.3f m", jnum(f.at28, "bed_height_m")) << " |\n";
+       << fmt("%.2f", json_number(f.at28, "dp_std_pa") / json_number(f.at28, "dp_mean_pa")) << " | "
+       << fmt("%.3g s", json_number(f.at28, "dp_dominant_period_s")) << " | "
+       << fmt("%.3f m", json_number(f.at28, "bed_height_m")) << " |\n";
   }
   md << "\nThe paper reports U_mf = 1.8 m/s (Wen-Yu 1.77) and a plateau at the bed's weight.\n";
-  rep.findings = md.str();
+  return md.str();
+}
 
+std::string advice(const std::vector<FormResult>& forms) {
   const auto& a = forms[0];
   const auto& p = forms[1];
   std::ostringstream adv;
@@ -218,7 +222,18 @@ Report model_form_study(const Options& o) {
          "carry what the pressure gradient carries in a consistent model, which holds the bed down "
          "at the paper's velocities and changes how it bubbles. Use the printed form only to show "
          "that difference.";
-  rep.advice = adv.str();
+  return adv.str();
+}
+
+}  // namespace
+
+Report model_form_study(const Options& o) {
+  const std::vector<FormResult> forms = measure(o);
+  Report rep;
+  write_table(o.out, table(forms), rep);
+  rep.charts = charts(forms, o.out);
+  rep.findings = findings(forms, o.size);
+  rep.advice = advice(forms);
   return rep;
 }
 

@@ -38,16 +38,7 @@ struct ModuleResult {
 ModuleResult run_module(const ModuleConfig& c, const Settings& bed, double until) {
   ModuleResult r;
   r.cfg = c;
-  Settings s;
-  if (c.drop) {
-    s.scene.name = "drop";
-    s.scene.kind = "drop";
-    s.particles.count = 1;
-    s.particles.placement = "single";
-    s.particles.y = 0.053;
-  } else {
-    s = bed;
-  }
+  Settings s = c.drop ? drop_scene(0.053) : bed;
   for (const auto& o : c.overrides) {
     // The few switches this study uses, applied to the settings directly.
     if (o == "no-gas") s.gas.enabled = false;
@@ -84,12 +75,18 @@ ModuleResult run_module(const ModuleConfig& c, const Settings& bed, double until
   return r;
 }
 
-}  // namespace
+// What the study measured: each configuration of modules run from the same packed bed.
+struct Modules {
+  bool tiny = false;
+  double until = 0.0;      // s, each configuration's run
+  int particles = 0;       // of the bed
+  std::vector<ModuleResult> res;  // in the order of the configurations in summary.md
+};
 
-Report modules_study(const Options& o) {
-  Report rep;
-  const bool tiny = o.size == Size::Tiny;
-  const double until = tiny ? 0.05 : 0.1;
+Modules measure(const Options& o) {
+  Modules m;
+  m.tiny = o.size == Size::Tiny;
+  m.until = m.tiny ? 0.05 : 0.1;
   Settings bed = bed_scene(o.size);
   if (o.log) o.log("packed bed (cached after the first time)");
   bed.particles.placement = "state";
@@ -103,27 +100,28 @@ Report modules_study(const Options& o) {
       {"+ jet at 2.8 m/s (full model)", "everything", {}, false},
       {"gas alone (bed held fixed)", "gas through a fixed bed", {"frozen"}, false},
   };
-  std::mutex log_mutex;
-  const auto res = RunPool(o.workers).map<ModuleResult>(cfgs.size(), [&](std::size_t i) {
-    ModuleResult r = run_module(cfgs[i], bed, until);
-    if (o.log) {
-      std::lock_guard lock(log_mutex);
-      o.log("  " + r.cfg.label + ": " + (r.ok ? fmt("%.1f us per step", r.us_per_step()) : "failed: " + r.error));
-    }
+  m.particles = bed.particles.count;
+  m.res = RunPool(o.workers).map<ModuleResult>(cfgs.size(), [&](std::size_t i) {
+    ModuleResult r = run_module(cfgs[i], bed, m.until);
+    if (o.log)
+      o.log("  " + r.cfg.label + ": " +
+            (r.ok ? fmt("%.1f us per step", r.us_per_step()) : "failed: " + r.error));
     return r;
   });
+  return m;
+}
 
+Table table(const Modules& m) {
   std::vector<std::string> cols = {"configuration", "needs", "particles", "steps", "sim_time_s",
                                    "wall_s", "cpu_s", "us_per_step", "cpu_us_per_step",
-                                   "us_per_particle_step",
-                                   "cost_wall_s_per_sim_s"};
+                                   "us_per_particle_step", "cost_wall_s_per_sim_s"};
   const char* phase_cols[] = {"neighbours_us_per_step", "contacts_us_per_step",
                               "integration_us_per_step", "porosity_drag_us_per_step",
                               "gas_us_per_step"};
   for (const char* c : phase_cols) cols.push_back(c);
   for (const char* c : {"status", "failure_kind", "failure"}) cols.push_back(c);
   Table t(cols);
-  for (const auto& r : res) {
+  for (const auto& r : m.res) {
     std::vector<std::string> row = {
         r.cfg.label, r.cfg.needs, std::to_string(r.particles), std::to_string(r.steps),
         num(r.sim_time), num(r.wall), num(r.cpu), num(r.us_per_step()),
@@ -134,19 +132,19 @@ Report modules_study(const Options& o) {
     row.push_back(r.ok ? "ok" : "failed");
     row.push_back(r.kind);
     row.push_back(r.error);
-    t.add(row);
-    rep.points++;
-    rep.failed += r.ok ? 0 : 1;
+    t.add(row, !r.ok);
   }
-  write_text((fs::path(o.out) / "study.csv").string(), t.csv());
+  return t;
+}
 
+std::vector<std::string> charts(const Modules& m, const std::string& dir) {
   // Time per step of each phase (points) and in all (line), configurations 2-6, labelled.
   chart::Chart c;
-  c.title = "Time per step by phase (" + std::to_string(bed.particles.count) + " particles)";
+  c.title = "Time per step by phase (" + std::to_string(m.particles) + " particles)";
   c.x.label = "configuration (numbered as in summary.md)";
   c.y.label = "microseconds per step";
   c.x.min = 1.5;
-  c.x.max = static_cast<double>(cfgs.size()) + 0.9;
+  c.x.max = static_cast<double>(m.res.size()) + 0.9;
   c.y.min = 0.0;
   for (int k = 0; k < static_cast<int>(Phase::Count); ++k) {
     chart::Series s;
@@ -155,9 +153,9 @@ Report modules_study(const Options& o) {
     s.shape = static_cast<chart::Shape>(k % 4);
     s.marker_size = 9.0;
     s.colour = chart::palette(static_cast<std::size_t>(k));
-    for (std::size_t i = 1; i < res.size(); ++i) {
+    for (std::size_t i = 1; i < m.res.size(); ++i) {
       s.x.push_back(static_cast<double>(i + 1));
-      s.y.push_back(res[i].ok ? res[i].phase_us(k) : NAN);
+      s.y.push_back(m.res[i].ok ? m.res[i].phase_us(k) : NAN);
     }
     c.series.push_back(s);
   }
@@ -165,17 +163,19 @@ Report modules_study(const Options& o) {
   total.label = "whole step";
   total.mark = chart::Mark::LinePoints;
   total.colour = chart::Rgb{40, 40, 40};
-  for (std::size_t i = 1; i < res.size(); ++i) {
+  for (std::size_t i = 1; i < m.res.size(); ++i) {
     total.x.push_back(static_cast<double>(i + 1));
-    total.y.push_back(res[i].ok ? res[i].us_per_step() : NAN);
-    total.point_labels.push_back(res[i].cfg.label);
+    total.y.push_back(m.res[i].ok ? m.res[i].us_per_step() : NAN);
+    total.point_labels.push_back(m.res[i].cfg.label);
   }
   c.series.push_back(total);
-  rep.charts.push_back(write_chart(o.out, "modules.png", c));
+  return {write_chart(dir, "modules.png", c)};
+}
 
+std::string findings(const Modules& m) {
   std::ostringstream md;
-  md << "Each configuration runs " << until << " s from the same packed bed ("
-     << bed.particles.count << " particles" << (tiny ? ", the tiny bed" : ", the paper's bed")
+  md << "Each configuration runs " << m.until << " s from the same packed bed ("
+     << m.particles << " particles" << (m.tiny ? ", the tiny bed" : ", the paper's bed")
      << "), one thread, with the other configurations running beside it; the time of each phase "
         "is the engine's own clock. Rotation has no switch: the spin is integrated with the "
         "position in the integration phase, so that phase's time is an upper bound of its cost.\n\n"
@@ -183,8 +183,8 @@ Report modules_study(const Options& o) {
         "programs sharing the machine do not inflate.\n\n"
         "| # | configuration | needs | us per step | CPU us per step | neighbours | contacts | "
         "integration | porosity and drag | gas |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  for (std::size_t i = 0; i < res.size(); ++i) {
-    const auto& r = res[i];
+  for (std::size_t i = 0; i < m.res.size(); ++i) {
+    const auto& r = m.res[i];
     md << "| " << i + 1 << " | " << r.cfg.label << " | " << r.cfg.needs << " | ";
     if (!r.ok) {
       md << "failed: " << r.error << " | | | | | | |\n";
@@ -195,20 +195,22 @@ Report modules_study(const Options& o) {
     for (int k = 0; k < static_cast<int>(Phase::Count); ++k) md << " | " << fmt("%.1f", r.phase_us(k));
     md << " |\n";
   }
-  rep.findings = md.str();
+  return md.str();
+}
 
+std::string advice(const Modules& m) {
   std::ostringstream adv;
   const int kC = static_cast<int>(Phase::Contacts), kG = static_cast<int>(Phase::Gas),
             kD = static_cast<int>(Phase::Coupling);
-  if (res[1].ok && res[2].ok && res[3].ok && res[4].ok) {
-    const double fric = res[2].phase_us(kC) / res[1].phase_us(kC) - 1.0;
-    const double gas_rest = res[3].us_per_step() / res[2].us_per_step();
+  if (m.res[1].ok && m.res[2].ok && m.res[3].ok && m.res[4].ok) {
+    const double fric = m.res[2].phase_us(kC) / m.res[1].phase_us(kC) - 1.0;
+    const double gas_rest = m.res[3].us_per_step() / m.res[2].us_per_step();
     adv << "Leave out what a scene does not need, and the gas most of all: a scene without "
            "[gas] spends nothing on it (0 us in the gas and drag phases), while the gas at rest "
            "already makes a step "
         << fmt("%.1f", gas_rest) << " times as long as the particles' alone ("
-        << fmt("%.0f", res[3].phase_us(kD)) << " us porosity and drag, "
-        << fmt("%.0f", res[3].phase_us(kG)) << " us gas per step). The contact pass with "
+        << fmt("%.0f", m.res[3].phase_us(kD)) << " us porosity and drag, "
+        << fmt("%.0f", m.res[3].phase_us(kG)) << " us gas per step). The contact pass with "
            "friction takes "
         << fmt("%+.0f %%", 100.0 * fric) << " against the frictionless one"
         << (std::fabs(fric) < 0.3
@@ -222,7 +224,18 @@ Report modules_study(const Options& o) {
   } else {
     adv << "Some configurations failed; see the table.";
   }
-  rep.advice = adv.str();
+  return adv.str();
+}
+
+}  // namespace
+
+Report modules_study(const Options& o) {
+  const Modules m = measure(o);
+  Report rep;
+  write_table(o.out, table(m), rep);
+  rep.charts = charts(m, o.out);
+  rep.findings = findings(m);
+  rep.advice = advice(m);
   return rep;
 }
 

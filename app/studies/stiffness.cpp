@@ -47,7 +47,8 @@ StiffPoint run_stiffness(double k, Size size, double until, double averaging,
       p.packing.error = std::string("packing: ") + e.what();
       p.packing.kind = failure_kind(e.what());
     }
-    p.packing.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    p.packing.wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   if (!p.packing.ok) {
     p.bed.error = "not run: the packing failed";
@@ -63,59 +64,69 @@ StiffPoint run_stiffness(double k, Size size, double until, double averaging,
   return p;
 }
 
-double jnum(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
-}
+// What the study measured: both springs, each packed and then run as the jetted bed.
+struct Stiffness {
+  Size size = Size::Full;
+  double until = 0.0, averaging = 0.0;  // s, the bed's run and where its mean starts
+  std::vector<StiffPoint> pts;          // the paper's 50,000 N/m, then Tsuji's 800 N/m
+};
 
-}  // namespace
-
-Report stiffness_study(const Options& o) {
-  Report rep;
+Stiffness measure(const Options& o) {
+  Stiffness m;
+  m.size = o.size;
   const bool tiny = o.size == Size::Tiny;
-  const double until = tiny ? 0.4 : 1.5, averaging = tiny ? 0.2 : 0.5;
+  m.until = tiny ? 0.4 : 1.5;
+  m.averaging = tiny ? 0.2 : 0.5;
   const std::vector<double> ks = {50000.0, 800.0};
-  std::mutex log_mutex;
-  const auto pts = RunPool(o.workers).map<StiffPoint>(ks.size(), [&](std::size_t i) {
-    StiffPoint p = run_stiffness(ks[i], o.size, until, averaging, o.out);
+  m.pts = RunPool(o.workers).map<StiffPoint>(ks.size(), [&](std::size_t i) {
+    StiffPoint p = run_stiffness(ks[i], o.size, m.until, m.averaging, o.out);
     if (o.log) {
-      std::lock_guard lock(log_mutex);
       o.log("  kappa = " + num(p.k) + " N/m: " +
-            (p.bed.ok ? fmt("max overlap %.3g %%", 100.0 * jnum(p.bed.result.summary, "max_overlap_ratio"))
+            (p.bed.ok ? fmt("max overlap %.3g %%",
+                            100.0 * json_number(p.bed.result.summary, "max_overlap_ratio"))
                       : "failed: " + p.bed.error));
     }
     return p;
   });
+  return m;
+}
 
+Table table(const Stiffness& m) {
   Table t({"stiffness_n_m", "contact_duration_s", "dt_s", "packing_bed_height_m",
            "packing_solid_fraction", "packing_max_overlap_ratio_at_rest",
            "packing_cost_wall_s_per_sim_s", "dp_mean_pa", "dp_std_pa", "dp_max_pa",
            "bed_weight_per_area_pa", "max_overlap_ratio", "max_overlap_ratio_after_startup",
            "dp_dominant_period_s", "bed_height_end_m", "cost_wall_s_per_sim_s",
-           "cost_cpu_s_per_sim_s", "particle_steps_per_s", "us_per_step", "simple_iterations_mean", "sim_time_s",
-           "averaging_start_s", "status", "failure_kind",
-           "failure"});
-  for (const auto& p : pts) {
+           "cost_cpu_s_per_sim_s", "particle_steps_per_s", "us_per_step", "simple_iterations_mean",
+           "sim_time_s", "averaging_start_s", "status", "failure_kind", "failure"});
+  for (const auto& p : m.pts) {
     const auto& pj = p.packing.result.summary;
     const auto& bj = p.bed.result.summary;
     const bool ok = p.packing.ok && p.bed.ok;
-    t.add({num(p.k), num(p.tc), num(p.dt), num(p.packing.ok ? jnum(pj, "bed_height_m") : NAN),
-           num(p.packing.ok ? jnum(pj, "solid_fraction") : NAN), num(p.rest_overlap),
-           num(p.packing.ok ? jnum(pj, "wall_s_per_sim_s") : NAN),
-           num(ok ? jnum(bj, "dp_mean_pa") : NAN), num(ok ? jnum(bj, "dp_std_pa") : NAN),
-           num(ok ? jnum(bj, "dp_max_pa") : NAN), num(ok ? jnum(bj, "bed_weight_per_area_pa") : NAN),
-           num(ok ? jnum(bj, "max_overlap_ratio") : NAN),
-           num(ok ? jnum(bj, "max_overlap_ratio_after_startup") : NAN),
-           num(ok ? jnum(bj, "dp_dominant_period_s") : NAN), num(ok ? jnum(bj, "bed_height_m") : NAN),
-           num(ok ? jnum(bj, "wall_s_per_sim_s") : NAN),
-           num(ok ? p.bed.cpu / until : NAN), num(ok ? jnum(bj, "particle_steps_per_s") : NAN),
-           num(ok ? 1e6 * jnum(bj, "wall_time_s") / jnum(bj, "steps") : NAN),
-           num(ok ? jnum(bj, "simple_iterations_mean") : NAN), num(until), num(averaging),
-           ok ? "ok" : "failed", ok ? "" : p.bed.kind, ok ? "" : p.bed.error});
-    rep.points++;
-    rep.failed += ok ? 0 : 1;
+    t.add({num(p.k), num(p.tc), num(p.dt),
+           num(p.packing.ok ? json_number(pj, "bed_height_m") : NAN),
+           num(p.packing.ok ? json_number(pj, "solid_fraction") : NAN), num(p.rest_overlap),
+           num(p.packing.ok ? json_number(pj, "wall_s_per_sim_s") : NAN),
+           num(ok ? json_number(bj, "dp_mean_pa") : NAN),
+           num(ok ? json_number(bj, "dp_std_pa") : NAN),
+           num(ok ? json_number(bj, "dp_max_pa") : NAN),
+           num(ok ? json_number(bj, "bed_weight_per_area_pa") : NAN),
+           num(ok ? json_number(bj, "max_overlap_ratio") : NAN),
+           num(ok ? json_number(bj, "max_overlap_ratio_after_startup") : NAN),
+           num(ok ? json_number(bj, "dp_dominant_period_s") : NAN),
+           num(ok ? json_number(bj, "bed_height_m") : NAN),
+           num(ok ? json_number(bj, "wall_s_per_sim_s") : NAN),
+           num(ok ? p.bed.cpu / m.until : NAN),
+           num(ok ? json_number(bj, "particle_steps_per_s") : NAN),
+           num(ok ? 1e6 * json_number(bj, "wall_time_s") / json_number(bj, "steps") : NAN),
+           num(ok ? json_number(bj, "simple_iterations_mean") : NAN), num(m.until),
+           num(m.averaging), ok ? "ok" : "failed", ok ? "" : p.bed.kind, ok ? "" : p.bed.error},
+          !ok);
   }
-  write_text((fs::path(o.out) / "study.csv").string(), t.csv());
+  return t;
+}
 
+std::vector<std::string> charts(const Stiffness& m, const std::string& dir) {
   chart::Chart ov, dp;
   ov.title = "Maximum overlap ratio in the jetted bed";
   ov.x.label = "time (s)";
@@ -125,12 +136,12 @@ Report stiffness_study(const Options& o) {
   dp.x.label = "time (s)";
   dp.y.label = "dp (Pa)";
   double weight = NAN;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    if (!pts[i].bed.ok) continue;
+  for (std::size_t i = 0; i < m.pts.size(); ++i) {
+    if (!m.pts[i].bed.ok) continue;
     chart::Series a, b;
-    a.label = b.label = "kappa = " + num(pts[i].k) + " N/m, dt = " + fmt("%.3g s", pts[i].dt);
+    a.label = b.label = "kappa = " + num(m.pts[i].k) + " N/m, dt = " + fmt("%.3g s", m.pts[i].dt);
     a.width = b.width = 1.2;
-    for (const auto& row : pts[i].bed.result.rows) {
+    for (const auto& row : m.pts[i].bed.result.rows) {
       a.x.push_back(row.t);
       a.y.push_back(100.0 * row.max_overlap_ratio);
       b.x.push_back(row.t);
@@ -138,69 +149,91 @@ Report stiffness_study(const Options& o) {
     }
     ov.series.push_back(a);
     dp.series.push_back(b);
-    weight = jnum(pts[i].bed.result.summary, "bed_weight_per_area_pa");
+    weight = json_number(m.pts[i].bed.result.summary, "bed_weight_per_area_pa");
   }
-  ov.hlines.push_back({1.0, "1 % (the paper's Fig. 15 after start-up)", {150, 150, 150}, true, 1.0});
-  if (std::isfinite(weight)) dp.hlines.push_back({weight, "bed weight / area", {90, 90, 90}, true, 1.5});
-  rep.charts.push_back(write_grid(o.out, "stiffness.png", {ov, dp}, 2, 800, 520,
-                                  "Stiff (paper) against soft (Tsuji) springs, each at t_c / 9"));
+  ov.hlines.push_back(
+      {1.0, "1 % (the paper's Fig. 15 after start-up)", {150, 150, 150}, true, 1.0});
+  if (std::isfinite(weight))
+    dp.hlines.push_back({weight, "bed weight / area", {90, 90, 90}, true, 1.5});
+  return {write_grid(dir, "stiffness.png", {ov, dp}, 2, 800, 520,
+                     "Stiff (paper) against soft (Tsuji) springs, each at t_c / 9")};
+}
 
+std::string findings(const Stiffness& m) {
   std::ostringstream md;
   md << "Each spring at its own step t_c / 9, t_c = pi sqrt(m / kappa) (sphere-wall). The packing "
-     << "falls for " << bed_scene(o.size).particles.packing_time << " s in still air; the bed then "
-     << "runs " << until << " s at 2.8 m/s (jet), averages from " << averaging << " s"
-     << (tiny ? " (tiny size: a bed of 300 particles 0.06 m wide)" : " (the paper's bed; runs "
-                                                                     "shortened from the paper's "
-                                                                     "seconds to keep the study "
-                                                                     "at minutes)")
+     << "falls for " << bed_scene(m.size).particles.packing_time << " s in still air; the bed then "
+     << "runs " << m.until << " s at 2.8 m/s (jet), averages from " << m.averaging << " s"
+     << (m.size == Size::Tiny ? " (tiny size: a bed of 300 particles 0.06 m wide)"
+                              : " (the paper's bed; runs shortened from the paper's seconds "
+                                "to keep the study at minutes)")
      << ".\n\n| kappa (N/m) | dt (s) | packed height (m) | solid fraction | overlap at rest | "
         "max overlap | max overlap after start-up | dp mean (Pa) | dp std (Pa) | dp period (s) | "
         "cost (CPU s / sim s) | cost (wall s / sim s) | us per step (wall) | SIMPLE iterations per "
         "gas step |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& p : pts) {
+  for (const auto& p : m.pts) {
     const auto& pj = p.packing.result.summary;
     const auto& bj = p.bed.result.summary;
     md << "| " << num(p.k) << " | " << fmt("%.3g", p.dt) << " | "
-       << (p.packing.ok ? fmt("%.4f", jnum(pj, "bed_height_m")) : "failed") << " | "
-       << (p.packing.ok ? fmt("%.3f", jnum(pj, "solid_fraction")) : "-") << " | "
+       << (p.packing.ok ? fmt("%.4f", json_number(pj, "bed_height_m")) : "failed") << " | "
+       << (p.packing.ok ? fmt("%.3f", json_number(pj, "solid_fraction")) : "-") << " | "
        << fmt("%.3g %%", 100.0 * p.rest_overlap) << " | ";
     if (p.bed.ok)
-      md << fmt("%.3g %%", 100.0 * jnum(bj, "max_overlap_ratio")) << " | "
-         << fmt("%.3g %%", 100.0 * jnum(bj, "max_overlap_ratio_after_startup")) << " | "
-         << fmt("%.0f", jnum(bj, "dp_mean_pa")) << " | " << fmt("%.0f", jnum(bj, "dp_std_pa"))
-         << " | " << fmt("%.3g", jnum(bj, "dp_dominant_period_s")) << " | "
-         << fmt("%.3g", p.bed.cpu / until) << " | " << fmt("%.3g", jnum(bj, "wall_s_per_sim_s"))
-         << " | " << fmt("%.0f", 1e6 * jnum(bj, "wall_time_s") / jnum(bj, "steps")) << " | "
-         << fmt("%.1f", jnum(bj, "simple_iterations_mean")) << " |\n";
+      md << fmt("%.3g %%", 100.0 * json_number(bj, "max_overlap_ratio")) << " | "
+         << fmt("%.3g %%", 100.0 * json_number(bj, "max_overlap_ratio_after_startup")) << " | "
+         << fmt("%.0f", json_number(bj, "dp_mean_pa")) << " | "
+         << fmt("%.0f", json_number(bj, "dp_std_pa")) << " | "
+         << fmt("%.3g", json_number(bj, "dp_dominant_period_s")) << " | "
+         << fmt("%.3g", p.bed.cpu / m.until) << " | "
+         << fmt("%.3g", json_number(bj, "wall_s_per_sim_s")) << " | "
+         << fmt("%.0f", 1e6 * json_number(bj, "wall_time_s") / json_number(bj, "steps")) << " | "
+         << fmt("%.1f", json_number(bj, "simple_iterations_mean")) << " |\n";
     else
       md << "failed: " << p.bed.error << " | | | | | | | | |\n";
   }
-  rep.findings = md.str();
+  return md.str();
+}
 
+std::string advice(const Stiffness& m) {
   std::ostringstream adv;
-  const StiffPoint& stiff = pts[0];
-  const StiffPoint& soft = pts[1];
+  const StiffPoint& stiff = m.pts[0];
+  const StiffPoint& soft = m.pts[1];
   if (stiff.bed.ok && soft.bed.ok) {
     const auto& sj = stiff.bed.result.summary;
     const auto& fj = soft.bed.result.summary;
-    const double o_s = jnum(sj, "max_overlap_ratio_after_startup"),
-                 o_f = jnum(fj, "max_overlap_ratio_after_startup");
-    const double c_s = stiff.bed.cpu / until, c_f = soft.bed.cpu / until;
+    const double o_s = json_number(sj, "max_overlap_ratio_after_startup"),
+                 o_f = json_number(fj, "max_overlap_ratio_after_startup");
+    const double c_s = stiff.bed.cpu / m.until, c_f = soft.bed.cpu / m.until;
     adv << "Keep the paper's **50,000 N/m** for results: after start-up its overlaps stay at "
         << fmt("%.2g %%", 100.0 * o_s) << " of a diameter against " << fmt("%.2g %%", 100.0 * o_f)
-        << " with 800 N/m, whose bed sits " << fmt("%.1f %%", 100.0 * (1.0 - jnum(soft.packing.result.summary, "bed_height_m") / jnum(stiff.packing.result.summary, "bed_height_m")))
+        << " with 800 N/m, whose bed sits "
+        << fmt("%.1f %%",
+               100.0 * (1.0 - json_number(soft.packing.result.summary, "bed_height_m") /
+                                  json_number(stiff.packing.result.summary, "bed_height_m")))
         << " lower when packed and whose contacts last " << fmt("%.1f", soft.tc / stiff.tc)
         << " times longer (collisions are no longer instantaneous beside the gas time scales: "
            "the paper's argument). The soft spring is "
         << fmt("%.1f", c_s / c_f)
-        << " times cheaper per simulated second (CPU time), so it is fit for quick looks (teaching, "
-           "previews) where overlaps of that size are acceptable, not for dp or overlap figures.";
+        << " times cheaper per simulated second (CPU time), so it is fit for quick looks "
+           "(teaching, previews) where overlaps of that size are acceptable, not for dp or "
+           "overlap figures.";
   } else {
     adv << "One of the runs failed (" << (stiff.bed.ok ? soft.bed.error : stiff.bed.error)
         << "); the paper's 50,000 N/m is the one to keep: a spring soft enough to fail here "
            "cannot hold the bed's weight at small overlap.";
   }
-  rep.advice = adv.str();
+  return adv.str();
+}
+
+}  // namespace
+
+Report stiffness_study(const Options& o) {
+  const Stiffness m = measure(o);
+  Report rep;
+  write_table(o.out, table(m), rep);
+  rep.charts = charts(m, o.out);
+  rep.findings = findings(m);
+  rep.advice = advice(m);
   return rep;
 }
 

@@ -1,11 +1,13 @@
 #pragma once
 // Studies: speed against accuracy, stability limits and model choices, measured by the program
-// itself (`fluidbed study NAME --out DIR`). Each study runs its independent points side by side
-// (RunPool, studies/run_pool.hpp: each simulation on one thread), records every point in
-// DIR/study.csv (a failed run is a row with its reason, never a crash), draws its charts as PNG
-// and writes DIR/summary.md: what was measured, the key figures, and what a user should choose.
+// itself (`fluidbed study NAME --out DIR`). Each study reads in four steps: it measures its
+// points (side by side on a RunPool, studies/run_pool.hpp, each simulation on one thread), builds
+// the table DIR/study.csv (every point a row; a failed run is a row with its reason, never a
+// crash), draws its charts as PNG, and writes the summary (DIR/summary.md): what was measured,
+// the key figures, and what a user should choose.
 #include <cstddef>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -22,7 +24,9 @@ struct Options {
   std::string out;  // folder for study.csv, the charts and summary.md (created)
   Size size = Size::Full;
   int workers = 0;  // points at once; 0: one per core
-  std::function<void(const std::string&)> log;  // progress lines (may be empty)
+  // Progress lines (may be empty); run_study hands the study one that its points' threads may
+  // call at the same time.
+  std::function<void(const std::string&)> log;
 };
 
 // What a study hands back; also written as DIR/summary.md (and used by `reproduce`).
@@ -92,19 +96,31 @@ double fixed_bed_force_ratio(const Settings& fixed, double U, double time, doubl
 // bracket [lo, hi] (m/s) to 2 mm/s. dp_lo: dp at lo.
 double fixed_bed_umf(const Settings& fixed, double lo, double hi, double time, double& dp_lo);
 
-// The table behind study.csv: named columns, rows of text.
+// The table behind study.csv: named columns, rows of text, one a point.
 class Table {
  public:
   explicit Table(std::vector<std::string> columns) : columns_(std::move(columns)) {}
-  void add(const std::vector<std::string>& row);  // throws std::logic_error on a wrong length
+  // A point; FAILED: a failed run (counted in the report). Throws std::logic_error on a wrong
+  // length.
+  void add(const std::vector<std::string>& row, bool failed = false);
   std::string csv() const;
   const std::vector<std::string>& columns() const { return columns_; }
   std::size_t rows() const { return rows_.size(); }
+  int failed() const { return failed_; }
 
  private:
   std::vector<std::string> columns_;
   std::vector<std::vector<std::string>> rows_;
+  int failed_ = 0;
 };
+// DIR/study.csv, and its points and failed runs counted into the report.
+void write_table(const std::string& dir, const Table& t, Report& rep);
+
+// A number of a run's summary.json; NaN when it is missing or not a number.
+double json_number(const nlohmann::json& j, const char* key);
+
+// The drop scene: one particle released at height Y (m) above the floor's wall, no gas.
+Settings drop_scene(double y);
 
 // %.6g, and empty for NaN (a value that does not exist for a failed point).
 std::string num(double v);
