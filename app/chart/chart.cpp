@@ -191,11 +191,11 @@ Ticks ticks_for(const Axis& axis, double lo, double hi, double span, double spac
 
 namespace detail {
 
-Plan make_plan(const Chart& c, int width, int height, const TextPainter& text) {
+Plan make_plan(const Chart& c, int width, int height, const TextPainter& text, double scale) {
   check(c);
   Plan plan;
   Layout& out = plan.layout;
-  out.scale = scale_of(width, height);
+  out.scale = scale > 0.0 ? scale : scale_of(width, height);
   const double s = out.scale;
   plan.z = Sizes(s);
   const Sizes& z = plan.z;
@@ -309,15 +309,15 @@ Plan make_plan(const Chart& c, int width, int height, const TextPainter& text) {
 
 }  // namespace detail
 
-Layout layout(const Chart& chart, int width, int height, const Font& font) {
+Layout layout(const Chart& chart, int width, int height, const Font& font, double scale) {
   const TextPainter text(font);
-  return make_plan(chart, width, height, text).layout;
+  return make_plan(chart, width, height, text, scale).layout;
 }
 
-Image render(const Chart& chart, int width, int height, const Font& font) {
+Image render(const Chart& chart, int width, int height, const Font& font, double scale) {
   Image img(width, height);
   TextPainter text(font);
-  const Plan plan = make_plan(chart, width, height, text);
+  const Plan plan = make_plan(chart, width, height, text, scale);
   Coverage cov(width, height);
   cov.set_clip(plan.layout.plot);
   if (chart.grid) draw_grid(plan, img, cov);
@@ -331,26 +331,39 @@ Image render(const Chart& chart, int width, int height, const Font& font) {
   return img;
 }
 
+Image render_figure(const std::vector<Panel>& panels, double scale, const Font& font,
+                    const std::string& title) {
+  if (panels.empty()) throw std::invalid_argument("a figure needs at least one chart");
+  int width = 0, height = 0;
+  for (const Panel& p : panels) {
+    width = std::max(width, p.x + p.width);
+    height = std::max(height, p.y + p.height);
+  }
+  TextPainter text(font);
+  const double title_size = 19 * scale;
+  const int band =
+      title.empty() ? 0 : static_cast<int>(std::lround(text.height(title_size) + 24 * scale));
+  Image img(width, height + band);
+  if (!title.empty()) {
+    text.draw(img, title, 0.5 * img.width(), 14 * scale, title_size, kInk, Align::Centre,
+              Anchor::Top);
+  }
+  for (const Panel& p : panels)
+    img.paste(render(p.chart, p.width, p.height, font, scale), p.x, band + p.y);
+  return img;
+}
+
 Image render_grid(const std::vector<Chart>& charts, int columns, int panel_w, int panel_h,
                   const Font& font, const std::string& title) {
   if (charts.empty()) throw std::invalid_argument("a figure needs at least one chart");
   if (columns < 1) throw std::invalid_argument("a figure needs at least one column");
   columns = std::min(columns, static_cast<int>(charts.size()));
-  const int rows = (static_cast<int>(charts.size()) + columns - 1) / columns;
-  const double s = scale_of(panel_w, panel_h);
-  TextPainter text(font);
-  const double title_size = 19 * s;
-  const int band =
-      title.empty() ? 0 : static_cast<int>(std::lround(text.height(title_size) + 24 * s));
-  Image img(columns * panel_w, rows * panel_h + band);
-  if (!title.empty()) {
-    text.draw(img, title, 0.5 * img.width(), 14 * s, title_size, kInk, Align::Centre, Anchor::Top);
-  }
+  std::vector<Panel> panels;
   for (std::size_t k = 0; k < charts.size(); ++k) {
     const int col = static_cast<int>(k) % columns, row = static_cast<int>(k) / columns;
-    img.paste(render(charts[k], panel_w, panel_h, font), col * panel_w, band + row * panel_h);
+    panels.push_back({charts[k], col * panel_w, row * panel_h, panel_w, panel_h});
   }
-  return img;
+  return render_figure(panels, scale_of(panel_w, panel_h), font, title);
 }
 
 }  // namespace fluidbed::chart

@@ -144,11 +144,23 @@ struct Layout {
 };
 // Both throw std::invalid_argument for a malformed chart (lengths that differ, an axis whose
 // min is not below its max, a non-positive bound on a log axis), naming the chart and series.
-Layout layout(const Chart& chart, int width, int height, const Font& font);
-Image render(const Chart& chart, int width, int height, const Font& font);
+// SCALE > 0 sets the size of text and lines (see the top of this file) instead of the image's
+// size: panels of different shapes in one figure then read alike.
+Layout layout(const Chart& chart, int width, int height, const Font& font, double scale = 0.0);
+Image render(const Chart& chart, int width, int height, const Font& font, double scale = 0.0);
 
-// Panels of PANEL_W x PANEL_H, COLUMNS to a row, filled row by row; TITLE (when not empty) in a
-// band above them.
+// A chart placed in a figure: its box, px from the figure's top left below the title band.
+struct Panel {
+  Chart chart;
+  int x = 0, y = 0, width = 0, height = 0;
+};
+// Panels where the caller put them, all drawn at SCALE; TITLE (when not empty) in a band above
+// them, its size at SCALE too. The figure is as large as its panels reach.
+Image render_figure(const std::vector<Panel>& panels, double scale, const Font& font,
+                    const std::string& title = "");
+
+// Panels of PANEL_W x PANEL_H, COLUMNS to a row, filled row by row (a figure at the scale of one
+// panel); TITLE (when not empty) in a band above them.
 Image render_grid(const std::vector<Chart>& charts, int columns, int panel_w, int panel_h,
                   const Font& font, const std::string& title = "");
 

@@ -115,7 +115,8 @@ inline double hidden_by(const Chart& c, const Transform& m, const Box& box, doub
   return hidden;
 }
 
-Plan make_plan(const Chart& c, int width, int height, const TextPainter& text);
+// SCALE <= 0: scale_of(width, height).
+Plan make_plan(const Chart& c, int width, int height, const TextPainter& text, double scale);
 
 // Drawing, in the order render() calls them (draw.cpp).
 void draw_grid(const Plan& plan, Image& img, Coverage& cov);

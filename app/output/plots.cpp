@@ -1,5 +1,6 @@
 #include "output/plots.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +15,86 @@ namespace {
 const chart::Font& font() {
   static const chart::Font f = chart::Font::load_default(asset_dir());
   return f;
+}
+
+// The sheets of one run (dp.png, overlap.png) are 1200 x 600 px: text and lines at 1.2 times
+// the sizes of an 800 x 500 chart (chart/chart.hpp). Figures of several panels use the same.
+constexpr int kSheetW = 1200, kSheetH = 600;  // px
+constexpr double kSheetScale = 1.2;
+
+// Where the particles went (m): the extent of every track with a margin of 5 % of the larger
+// span (at least 2 mm), kept inside the bed.
+struct Extent {
+  double x0, x1, y0, y1;
+};
+Extent track_extent(const std::vector<Trajectory>& tracks, double width, double height) {
+  Extent e{INFINITY, -INFINITY, INFINITY, -INFINITY};
+  for (const auto& tr : tracks)
+    for (std::size_t k = 0; k < tr.x.size(); ++k) {
+      e.x0 = std::min(e.x0, tr.x[k]);
+      e.x1 = std::max(e.x1, tr.x[k]);
+      e.y0 = std::min(e.y0, tr.y[k]);
+      e.y1 = std::max(e.y1, tr.y[k]);
+    }
+  if (!(e.x0 <= e.x1) || !(e.y0 <= e.y1)) return {0.0, width, 0.0, height};  // nothing recorded
+  const double pad = std::max(0.002, 0.05 * std::max(e.x1 - e.x0, e.y1 - e.y0));
+  return {std::max(0.0, e.x0 - pad), std::min(width, e.x1 + pad), std::max(0.0, e.y0 - pad),
+          std::min(height, e.y1 + pad)};
+}
+
+// Figs 12-13: the paths in the bed at true aspect, cropped to where the particles went, beside
+// x and y against time stacked on one time axis. The path panel is as wide as its content needs
+// at the sheet's height, so the sheet has no empty band, and every panel's text is the size of
+// the run's other charts.
+chart::Image trajectory_figure(const std::vector<Trajectory>& tracks, double width,
+                               double height) {
+  chart::Chart path, xs, ys;
+  path.title = "Tracked particle paths (Fig. 12)";
+  path.x.label = "x (m)";
+  path.y.label = "y (m)";
+  const Extent e = track_extent(tracks, width, height);
+  path.x.min = e.x0;
+  path.x.max = e.x1;
+  path.y.min = e.y0;
+  path.y.max = e.y1;
+  path.legend = false;  // the time panels beside it name the particles, in the same colours
+  xs.title = "x against time (Fig. 13)";
+  xs.x.label = "time (s)";
+  xs.y.label = "x (m)";
+  ys.title = "y against time (Fig. 13)";
+  ys.x.label = "time (s)";
+  ys.y.label = "y (m)";
+  for (const auto& tr : tracks) {
+    const std::string label = "particle " + std::to_string(tr.id);
+    chart::Series a;
+    a.label = label;
+    a.x = tr.x;
+    a.y = tr.y;
+    a.width = 1.2;
+    path.series.push_back(a);
+    chart::Series b = a;
+    b.x = tr.t;
+    b.y = tr.x;
+    xs.series.push_back(b);
+    chart::Series c = a;
+    c.x = tr.t;
+    c.y = tr.y;
+    ys.series.push_back(c);
+  }
+  // The path panel's width: its margins (laid out once at a trial width) plus the plot's height
+  // times the aspect of the region shown; at least its title's width, at most a sheet's.
+  const int h = 2 * kSheetH;
+  const chart::Layout trial = chart::layout(path, kSheetW, h, font(), kSheetScale);
+  const double margins = trial.plot.x0 + (kSheetW - trial.plot.x1);
+  const double aspect = (e.x1 - e.x0) / (e.y1 - e.y0);
+  const double least = trial.title.width() + 2.0 * 12.0 * kSheetScale;  // the chart's padding
+  const int w = static_cast<int>(std::lround(
+      std::clamp(margins + trial.plot.height() * aspect, least, static_cast<double>(kSheetW))));
+  path.equal_aspect = true;  // a metre as long across as up; the box shrinks where it must
+  return chart::render_figure({{path, 0, 0, w, h},
+                               {xs, w, 0, kSheetW, kSheetH},
+                               {ys, w, kSheetH, kSheetW, kSheetH}},
+                              kSheetScale, font(), "Particles starting in the jet region");
 }
 
 }  // namespace
@@ -142,41 +223,8 @@ std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
     written.push_back(p);
   }
   if (!tracks.empty()) {
-    chart::Chart path, xs, ys;
-    path.title = "Tracked particle paths (Fig. 12)";
-    path.x.label = "x (m)";
-    path.y.label = "y (m)";
-    path.x.min = 0.0;
-    path.x.max = width;
-    path.y.min = 0.0;
-    path.y.max = height;
-    path.equal_aspect = true;
-    xs.title = "x against time (Fig. 13)";
-    xs.x.label = "time (s)";
-    xs.y.label = "x (m)";
-    ys.title = "y against time (Fig. 13)";
-    ys.x.label = "time (s)";
-    ys.y.label = "y (m)";
-    for (const auto& tr : tracks) {
-      const std::string label = "particle " + std::to_string(tr.id);
-      chart::Series a;
-      a.label = label;
-      a.x = tr.x;
-      a.y = tr.y;
-      a.width = 1.0;
-      path.series.push_back(a);
-      chart::Series b = a;
-      b.x = tr.t;
-      b.y = tr.x;
-      xs.series.push_back(b);
-      chart::Series c = a;
-      c.x = tr.t;
-      c.y = tr.y;
-      ys.series.push_back(c);
-    }
     const auto p = (fs::path(dir) / "trajectory.png").string();
-    chart::render_grid({path, xs, ys}, 3, 600, 900, font(), "Particles starting in the jet region")
-        .write_png(p);
+    trajectory_figure(tracks, width, height).write_png(p);
     written.push_back(p);
   }
   return written;

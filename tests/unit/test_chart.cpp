@@ -454,3 +454,25 @@ TEST(ChartGrid, PanelsFillRowByRow) {
   EXPECT_GT(titled.height(), 250);
   EXPECT_THROW(fluidbed::chart::render_grid({}, 2, 400, 250, font()), std::invalid_argument);
 }
+
+// A figure of panels of different shapes: each where it was put, all at one text scale (a tall
+// narrow panel's text as large as a wide one's), the figure as large as the panels reach.
+TEST(ChartFigure, PanelsGoWhereTheyArePutAtOneScale) {
+  Chart a = bare();
+  a.series = {line({0, 10}, {5, 5}, kRed)};
+  Chart b = bare();
+  b.series = {line({0, 10}, {5, 5}, kBlue)};
+  const Image img = fluidbed::chart::render_figure({{a, 0, 0, 300, 800}, {b, 300, 0, 900, 400}},
+                                                   1.2, font());
+  EXPECT_EQ(img.width(), 1200);
+  EXPECT_EQ(img.height(), 800);
+  EXPECT_GT(count(img, kRed, {0, 0, 300, 800}), 100);
+  EXPECT_EQ(count(img, kRed, {300, 0, 1200, 800}), 0);
+  EXPECT_GT(count(img, kBlue, {300, 0, 1200, 400}), 100);
+  EXPECT_EQ(count(img, kWhite, {300, 400, 1200, 800}), 900 * 400);  // nothing below the second
+  // The scale asked for, not the one the narrow panel's size would give (min(300/800, ...)).
+  EXPECT_DOUBLE_EQ(fluidbed::chart::layout(a, 300, 800, font(), 1.2).scale, 1.2);
+  EXPECT_DOUBLE_EQ(fluidbed::chart::layout(a, 300, 800, font()).scale, 300.0 / 800.0);
+  const Image titled = fluidbed::chart::render_figure({{a, 0, 0, 300, 800}}, 1.2, font(), "T");
+  EXPECT_GT(titled.height(), 800);
+}
