@@ -13,7 +13,6 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <sstream>
 
 #include "analysis/bounce_tracker.hpp"
@@ -149,11 +148,6 @@ struct StepResult {
     return e.empty() ? "" : (e.find("bounces") != std::string::npos ? "energy" : failure_kind(e));
   }
 };
-
-double analytic_restitution(double k, double eta, double m) {
-  const double zeta = eta / (2.0 * std::sqrt(k * m));
-  return std::exp(-std::numbers::pi * zeta / std::sqrt(1.0 - zeta * zeta));
-}
 
 // The settled packing every packing test starts from: frictionless spheres on the random lattice,
 // damped (eta = 0.5 kg/s) with the paper's scheme at half the paper's step until at rest.
@@ -295,7 +289,7 @@ StepResult measure_step(const Config& c, const RestState& rest, const Variant& v
     double sum = 0.0;
     for (double e : es) sum += e;
     r.e_mean = sum / static_cast<double>(es.size());
-    r.e_err = std::fabs(r.e_mean - analytic_restitution(50000.0, 0.15, m));
+    r.e_err = std::fabs(r.e_mean - restitution_from_damping(50000.0, 0.15, m));
     const auto [lo, hi] = std::minmax_element(es.begin(), es.end());
     r.e_spread = *hi - *lo;
   }
@@ -403,7 +397,7 @@ Table table(const Accuracy& a) {
            "restitution_error", "restitution_spread", "energy_growth_mgd", "energy_drift_mgd",
            "stable", "cost_cpu_s_per_sim_s", "cost_wall_s_per_sim_s", "particle_steps_per_s",
            "status", "failure_kind", "failure"});
-  const double e_th = analytic_restitution(50000.0, 0.15, a.m);
+  const double e_th = restitution_from_damping(50000.0, 0.15, a.m);
   for (std::size_t v = 0; v < nv; ++v)
     for (const auto& r : res[v]) {
       t.add({c.variants[v].label(), c.variants[v].integrator, c.variants[v].displacement,
@@ -533,7 +527,7 @@ std::string findings(const Accuracy& a) {
   const Config& c = a.config;
   const auto& res = a.res;
   const std::size_t nv = c.variants.size();
-  const double e_th = analytic_restitution(50000.0, 0.15, a.m);
+  const double e_th = restitution_from_damping(50000.0, 0.15, a.m);
   std::ostringstream md;
   md << "Time steps are multiples of t_c / 9 = " << fmt("%.4g s", a.tc9) << ", with the contact "
      << "duration t_c = pi sqrt(m / kappa) = " << fmt("%.4g s", a.tc)

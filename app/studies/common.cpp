@@ -87,10 +87,6 @@ double paper_particle_mass() {
   return 2700.0 * std::numbers::pi * 0.004 * 0.004 * 0.004 / 6.0;
 }
 
-double contact_duration(double stiffness, double mass) {
-  return std::numbers::pi * std::sqrt(mass / stiffness);
-}
-
 double thread_cpu_seconds() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);

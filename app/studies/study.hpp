@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "chart/chart.hpp"
+#include "dem/contact_law.hpp"
 #include "run/run.hpp"
 #include "scene/settings.hpp"
 #include "studies/run_pool.hpp"
@@ -59,10 +60,9 @@ Report run_study(const Info& info, const Options& o);
 
 // The paper's sphere: 4 mm glass, 9.048e-5 kg.
 double paper_particle_mass();
-// The contact duration used by every study: pi sqrt(m / kappa), a sphere against a wall (the
-// figure model.md derives: 1.34e-4 s at kappa = 50,000 N/m; the paper's step is about 1/9 of it).
-// A pair of equal spheres (reduced mass m/2) lasts 1/sqrt(2) as long.
-double contact_duration(double stiffness, double mass);
+// Every study takes the contact duration of a sphere against a wall, contact_duration(kappa, m)
+// of dem/contact_law.hpp (1.34e-4 s at kappa = 50,000 N/m, as model.md derives; the paper's step
+// is about 1/9 of it). A pair of equal spheres (reduced mass m/2) lasts 1/sqrt(2) as long.
 
 // CPU seconds used by the calling thread so far. A point's cost is measured with it: each point
 // runs on one thread, so this is its compute time whatever else shares the cores (on an idle core
