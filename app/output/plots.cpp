@@ -17,6 +17,22 @@ const chart::Font& font() {
   return f;
 }
 
+// One quantity of a run against time, a thin line, no legend (Figs 8 and 15).
+chart::Chart against_time(const std::string& title, const std::string& y_label,
+                          const std::vector<double>& t, const std::vector<double>& y) {
+  chart::Chart c;
+  c.title = title;
+  c.x.label = "time (s)";
+  c.y.label = y_label;
+  c.legend = false;
+  chart::Series s;
+  s.x = t;
+  s.y = y;
+  s.width = 1.2;
+  c.series = {s};
+  return c;
+}
+
 // The sheets of one run (dp.png, overlap.png) are 1200 x 600 px: text and lines at 1.2 times
 // the sizes of an 800 x 500 chart (chart/chart.hpp). Figures of several panels use the same.
 constexpr int kSheetW = 1200, kSheetH = 600;  // px
@@ -185,16 +201,8 @@ std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
   }
   const double start = r.summary.value("averaging_start_s", 0.0);
   if (has_gas) {
-    chart::Chart c;
-    c.title = "Bed pressure drop against time (Fig. 8)";
-    c.x.label = "time (s)";
-    c.y.label = "pressure drop (Pa)";
-    c.legend = false;
-    chart::Series s;
-    s.x = t;
-    s.y = dp;
-    s.width = 1.2;
-    c.series = {s};
+    chart::Chart c = against_time("Bed pressure drop against time (Fig. 8)", "pressure drop (Pa)",
+                                  t, dp);
     c.hlines.push_back({r.summary.value("bed_weight_per_area_pa", 0.0), "bed weight / area",
                         {90, 90, 90}, true, 1.5});
     if (r.summary.contains("dp_mean_pa") && r.summary["dp_mean_pa"].is_number())
@@ -206,17 +214,9 @@ std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
     written.push_back(p);
   }
   {
-    chart::Chart c;
-    c.title = "Maximum overlap ratio against time (Fig. 15)";
-    c.x.label = "time (s)";
-    c.y.label = "max overlap ratio (%)";
+    chart::Chart c = against_time("Maximum overlap ratio against time (Fig. 15)",
+                                  "max overlap ratio (%)", t, overlap);
     c.y.min = 0.0;
-    c.legend = false;
-    chart::Series s;
-    s.x = t;
-    s.y = overlap;
-    s.width = 1.2;
-    c.series = {s};
     c.hlines.push_back({1.0, "1 %", {150, 150, 150}, true, 1.0});
     const auto p = (fs::path(dir) / "overlap.png").string();
     chart::render(c, 1200, 600, font()).write_png(p);

@@ -411,17 +411,12 @@ Table table(const Accuracy& a) {
 }
 
 // Four panels against the step: drop error, restitution error, energy change, cost.
-std::string accuracy_chart(const Accuracy& a, const std::string& dir, const std::string& prefix) {
+std::string accuracy_chart(const Accuracy& a, const std::string& dir) {
   const Config& c = a.config;
   const auto& res = a.res;
   const std::size_t nv = c.variants.size();
   auto panel = [&](const std::string& title, const std::string& ylabel, auto value) {
-    chart::Chart ch;
-    ch.title = title;
-    ch.x.label = "time step / (t_c / 9)";
-    ch.x.log = true;
-    ch.y.label = ylabel;
-    ch.y.log = true;
+    chart::Chart ch = log_log_chart(title, "time step / (t_c / 9)", ylabel);
     for (std::size_t v = 0; v < nv; ++v) {
       chart::Series s = variant_series(c, v);
       for (const auto& r : res[v]) {
@@ -444,24 +439,20 @@ std::string accuracy_chart(const Accuracy& a, const std::string& dir, const std:
             [](const StepResult& r) { return r.cost; })};
   acc[1].hlines.push_back({kRestitutionTolerance, "0.01", {150, 150, 150}, true, 1.0});
   acc[0].hlines.push_back({kDropTolerance, "1 %", {150, 150, 150}, true, 1.0});
-  return write_grid(dir, prefix + "accuracy.png", acc, 2, 800, 520,
+  return write_grid(dir, "accuracy.png", acc, 2, 800, 520,
                     "Accuracy and cost against the time step (t_c = " + fmt("%.3g s", a.tc) +
                         ", pi sqrt(m / kappa), sphere-wall)");
 }
 
 // The largest energy gain against the step, failed runs marked at the top.
-std::string stability_chart(const Accuracy& a, const std::string& dir, const std::string& prefix) {
+std::string stability_chart(const Accuracy& a, const std::string& dir) {
   const Config& c = a.config;
   const auto& res = a.res;
   const std::size_t nv = c.variants.size();
-  chart::Chart st;
-  st.title =
+  chart::Chart st = log_log_chart(
       "Stability: largest energy gain of a packing at rest (failed runs at the top; no gain: no "
-      "point)";
-  st.x.label = "time step / (t_c / 9)";
-  st.x.log = true;
-  st.y.label = "largest energy gain per particle (m g D)";
-  st.y.log = true;
+      "point)",
+      "time step / (t_c / 9)", "largest energy gain per particle (m g D)");
   const double cap = 10.0;
   st.y.max = 30.0;
   for (std::size_t v = 0; v < nv; ++v) {
@@ -495,21 +486,18 @@ std::string stability_chart(const Accuracy& a, const std::string& dir, const std
                          2.0});
   }
   st.hlines.push_back({kGrowthLimit, "instability threshold", {150, 150, 150}, true, 1.0});
-  return write_chart(dir, prefix + "stability.png", st);
+  return write_chart(dir, "stability.png", st);
 }
 
 // Drop-test error against cost, each point labelled with its step.
-std::string speed_accuracy_chart(const Accuracy& a, const std::string& dir,
-                                 const std::string& prefix) {
+std::string speed_accuracy_chart(const Accuracy& a, const std::string& dir) {
   const Config& c = a.config;
   const auto& res = a.res;
   const std::size_t nv = c.variants.size();
-  chart::Chart sa;
-  sa.title = "Speed against accuracy: drop-test error against cost (labels: step / (t_c / 9))";
-  sa.x.label = "cost: CPU s per simulated s (packing of " + std::to_string(c.rest_count) + ")";
-  sa.x.log = true;
-  sa.y.label = "|height after 10 bounces / drop height - 1|";
-  sa.y.log = true;
+  chart::Chart sa = log_log_chart(
+      "Speed against accuracy: drop-test error against cost (labels: step / (t_c / 9))",
+      "cost: CPU s per simulated s (packing of " + std::to_string(c.rest_count) + ")",
+      "|height after 10 bounces / drop height - 1|");
   for (std::size_t v = 0; v < nv; ++v) {
     chart::Series s = variant_series(c, v);
     for (const auto& r : res[v]) {
@@ -520,7 +508,7 @@ std::string speed_accuracy_chart(const Accuracy& a, const std::string& dir,
     }
     sa.series.push_back(s);
   }
-  return write_chart(dir, prefix + "speed_accuracy.png", sa);
+  return write_chart(dir, "speed_accuracy.png", sa);
 }
 
 std::string findings(const Accuracy& a) {
@@ -655,15 +643,13 @@ std::string advice(const Accuracy& a) {
   return adv.str();
 }
 
-Report accuracy_study(const Options& o, const Config& c, const std::string& chart_prefix) {
-  const Accuracy a = measure(o, c);
-  Report rep;
-  write_table(o.out, table(a), rep);
-  rep.charts = {accuracy_chart(a, o.out, chart_prefix), stability_chart(a, o.out, chart_prefix),
-                speed_accuracy_chart(a, o.out, chart_prefix)};
-  rep.findings = findings(a);
-  rep.advice = advice(a);
-  return rep;
+std::vector<std::string> charts(const Accuracy& a, const std::string& dir) {
+  return {accuracy_chart(a, dir), stability_chart(a, dir), speed_accuracy_chart(a, dir)};
+}
+
+Report accuracy_study(const Options& o, const Config& c) {
+  const auto measure_c = [&c](const Options& opt) { return measure(opt, c); };
+  return run_steps<Accuracy>(o, {measure_c, table, charts, findings, advice});
 }
 
 }  // namespace
@@ -674,13 +660,13 @@ Report integrators_study(const Options& o) {
                                 {"velocity_verlet", "incremental"},
                                 {"symplectic_euler", "incremental"}},
                                false);
-  return accuracy_study(o, c, "");
+  return accuracy_study(o, c);
 }
 
 Report contact_study(const Options& o) {
   const Config c =
       make_config(o.size, {{"newmark", "incremental"}, {"newmark", "geometric"}}, true);
-  Report r = accuracy_study(o, c, "");
+  Report r = accuracy_study(o, c);
   r.findings +=
       "\nThe incremental form starts each contact's spring at the overlap it would have had at "
       "the moment of touching (eq 13), so a contact first seen late stores no fictitious energy; "

@@ -243,6 +243,17 @@ const chart::Font& font() {
 }
 }  // namespace
 
+chart::Chart log_log_chart(const std::string& title, const std::string& x_label,
+                           const std::string& y_label) {
+  chart::Chart c;
+  c.title = title;
+  c.x.label = x_label;
+  c.x.log = true;
+  c.y.label = y_label;
+  c.y.log = true;
+  return c;
+}
+
 std::string write_chart(const std::string& dir, const std::string& file, const chart::Chart& c,
                         int width, int height) {
   chart::render(c, width, height, font()).write_png((fs::path(dir) / file).string());

@@ -182,12 +182,8 @@ std::vector<std::string> charts(const Coupling& m, const std::string& dir) {
   const double noise = m.noise;
   // Pareto charts: cost against error, every point labelled, the non-dominated ones joined.
   auto pareto = [&](const std::string& title, const std::string& ylabel, auto error) {
-    chart::Chart c;
-    c.title = title;
-    c.x.label = "cost: CPU s per simulated s (jetted bed, one thread)";
-    c.x.log = true;
-    c.y.label = ylabel;
-    c.y.log = true;
+    chart::Chart c =
+        log_log_chart(title, "cost: CPU s per simulated s (jetted bed, one thread)", ylabel);
     std::vector<std::pair<double, double>> pts;
     std::map<std::string, chart::Series> by_axis;
     for (std::size_t i = 1; i < res.size(); ++i) {
@@ -321,13 +317,7 @@ std::string advice(const Coupling& m) {
 }  // namespace
 
 Report coupling_study(const Options& o) {
-  const Coupling m = measure(o);
-  Report rep;
-  write_table(o.out, table(m), rep);
-  rep.charts = charts(m, o.out);
-  rep.findings = findings(m);
-  rep.advice = advice(m);
-  return rep;
+  return run_steps<Coupling>(o, {measure, table, charts, findings, advice});
 }
 
 }  // namespace fluidbed::app::study

@@ -162,7 +162,7 @@ std::string findings(const std::vector<CaseResult>& res) {
   return md.str();
 }
 
-std::string advice() {
+std::string advice(const std::vector<CaseResult>& /*res*/) {
   // Nothing measured changes it: every case either stops with its sentence or is a row saying
   // it was not detected.
   return
@@ -177,13 +177,7 @@ std::string advice() {
 }  // namespace
 
 Report failures_study(const Options& o) {
-  const std::vector<CaseResult> res = measure(o);
-  Report rep;
-  write_table(o.out, table(res), rep);
-  rep.charts = charts(res, o.out);
-  rep.findings = findings(res);
-  rep.advice = advice();
-  return rep;
+  return run_steps<std::vector<CaseResult>>(o, {measure, table, charts, findings, advice});
 }
 
 }  // namespace fluidbed::app::study

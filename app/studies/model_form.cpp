@@ -228,13 +228,10 @@ std::string advice(const std::vector<FormResult>& forms) {
 }  // namespace
 
 Report model_form_study(const Options& o) {
-  const std::vector<FormResult> forms = measure(o);
-  Report rep;
-  write_table(o.out, table(forms), rep);
-  rep.charts = charts(forms, o.out);
-  rep.findings = findings(forms, o.size);
-  rep.advice = advice(forms);
-  return rep;
+  const auto with_size = [&o](const std::vector<FormResult>& forms) {
+    return findings(forms, o.size);
+  };
+  return run_steps<std::vector<FormResult>>(o, {measure, table, charts, with_size, advice});
 }
 
 }  // namespace fluidbed::app::study

@@ -230,13 +230,7 @@ std::string advice(const Modules& m) {
 }  // namespace
 
 Report modules_study(const Options& o) {
-  const Modules m = measure(o);
-  Report rep;
-  write_table(o.out, table(m), rep);
-  rep.charts = charts(m, o.out);
-  rep.findings = findings(m);
-  rep.advice = advice(m);
-  return rep;
+  return run_steps<Modules>(o, {measure, table, charts, findings, advice});
 }
 
 }  // namespace fluidbed::app::study

@@ -228,13 +228,7 @@ std::string advice(const Stiffness& m) {
 }  // namespace
 
 Report stiffness_study(const Options& o) {
-  const Stiffness m = measure(o);
-  Report rep;
-  write_table(o.out, table(m), rep);
-  rep.charts = charts(m, o.out);
-  rep.findings = findings(m);
-  rep.advice = advice(m);
-  return rep;
+  return run_steps<Stiffness>(o, {measure, table, charts, findings, advice});
 }
 
 }  // namespace fluidbed::app::study

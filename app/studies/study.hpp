@@ -129,12 +129,37 @@ std::string fmt(const char* format, double v);
 std::string csv_text(std::string s);  // quoted when it holds a comma or a quote
 
 void write_text(const std::string& path, const std::string& text);
+// A chart with both axes logarithmic (errors and costs against steps or costs).
+chart::Chart log_log_chart(const std::string& title, const std::string& x_label,
+                           const std::string& y_label);
 // Draws one chart (or a grid of them) as PNG; returns the file name for the report.
 std::string write_chart(const std::string& dir, const std::string& file, const chart::Chart& c,
                         int width = 1200, int height = 750);
 std::string write_grid(const std::string& dir, const std::string& file,
                        const std::vector<chart::Chart>& charts, int columns, int panel_w,
                        int panel_h, const std::string& title);
+
+// A study's four steps over what it measured (its Measured type): measure the points, build the
+// table, draw the charts, write the summary (findings and advice). run_steps carries them out in
+// that order and writes study.csv; it is the whole of a study's entry point.
+template <class Measured>
+struct Steps {
+  std::function<Measured(const Options&)> measure;
+  std::function<Table(const Measured&)> table;
+  std::function<std::vector<std::string>(const Measured&, const std::string& dir)> charts;
+  std::function<std::string(const Measured&)> findings, advice;
+};
+
+template <class Measured>
+Report run_steps(const Options& o, const Steps<Measured>& steps) {
+  const Measured m = steps.measure(o);
+  Report rep;
+  write_table(o.out, steps.table(m), rep);
+  rep.charts = steps.charts(m, o.out);
+  rep.findings = steps.findings(m);
+  rep.advice = steps.advice(m);
+  return rep;
+}
 
 // The studies.
 Report integrators_study(const Options& o);
