@@ -62,6 +62,9 @@ int main(int argc, char** argv) {
   add_output_options(run, run_args.output);
   run->add_flag("--plots", run_args.plots,
                 "write dp.png (Fig. 8), overlap.png (Fig. 15) and trajectory.png (Figs 12-13)");
+  run->add_flag("--bubbles", run_args.bubbles,
+                "bubble analysis: bubbles.csv, mixing.csv, summary.json `bubbles` (with --plots: "
+                "bubbles.png, mixing.png)");
   run->add_option("--track", run_args.track,
                   "particle ids to follow for --plots: 12,345 (default: two from the jet region)");
 

@@ -31,6 +31,7 @@ struct RunArgs {
   OutputArgs output;    // run only
   bool plots = false;   // run: dp.png, overlap.png, trajectory.png
   std::string track;    // run --plots: particle ids "12,345"; empty: two from the jet region
+  bool bubbles = false; // run: the bubble analysis (bubbles.csv, mixing.csv, summary `bubbles`)
 };
 
 struct SweepArgs {

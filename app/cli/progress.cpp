@@ -20,9 +20,10 @@ void print_progress(const Simulation& sim, double wall, double until) {
 }  // namespace
 
 RunResult run_with_progress(Simulation& sim, double until,
-                            std::function<void(const Simulation&)> on_step) {
+                            std::function<void(const Simulation&)> on_step, bool bubbles) {
   RunOptions opt;
   opt.until = until;
+  opt.bubbles = bubbles;
   opt.on_step = std::move(on_step);
   const bool terminal = isatty(STDERR_FILENO) != 0;
   if (terminal) opt.progress = [until](const Simulation& s, double w) { print_progress(s, w, until); };

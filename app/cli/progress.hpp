@@ -8,8 +8,10 @@
 
 namespace fluidbed::app {
 
-// run_simulation to `until` (s), `on_step` after every step (may be empty).
+// run_simulation to `until` (s), `on_step` after every step (may be empty), with the bubble
+// analysis when `bubbles`.
 RunResult run_with_progress(Simulation& sim, double until,
-                            std::function<void(const Simulation&)> on_step = {});
+                            std::function<void(const Simulation&)> on_step = {},
+                            bool bubbles = false);
 
 }  // namespace fluidbed::app

@@ -72,7 +72,7 @@ int run_command(const RunArgs& a) {
       if (pictures) pictures->observe(x);
       if (tracks) tracks->observe(x);
     };
-  const RunResult r = run_with_progress(sim, until, on_step);
+  const RunResult r = run_with_progress(sim, until, on_step, a.bubbles);
   const FrameStats picture_stats = pictures ? pictures->finish() : FrameStats{};
   write_run_outputs(out, r);
   {
@@ -86,6 +86,15 @@ int run_command(const RunArgs& a) {
               sim.particle_count(), sim.time(), r.summary["wall_time_s"].get<double>(),
               r.summary["particle_steps_per_s"].get<double>());
   std::printf("wrote %s/summary.json and %s/timeseries.csv\n", out.c_str(), out.c_str());
+  if (r.bubbles) {
+    const auto& b = r.summary["bubbles"];
+    auto num = [&](const char* k) { return b[k].is_number() ? b[k].get<double>() : 0.0; };
+    std::printf("bubbles: %.2f formed per s, %.2f eruptions per s, mean D_e %.1f mm, rise %.3f m/s, "
+                "regime %s; wrote %s/bubbles.csv and %s/mixing.csv\n",
+                num("formed_per_s"), num("eruptions_per_s"), 1e3 * num("mean_d_eq_m"),
+                num("mean_rise_velocity_m_s"), b["regime"].get<std::string>().c_str(), out.c_str(),
+                out.c_str());
+  }
   if (pictures) report_frame_output(out, a.output, picture_stats, r.summary["wall_time_s"].get<double>());
   if (tracks) {
     const auto files = plot_run(out, r, tracks->tracks(), s.domain.width, s.domain.height, sim.has_gas());

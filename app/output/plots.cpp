@@ -188,6 +188,92 @@ void plot_sweep(const std::string& path, const SweepResult& r, const std::string
   chart::render(c, 1200, 750, font()).write_png(path);
 }
 
+namespace {
+
+// Welch's power spectrum of dp (log scale), its dominant frequency marked.
+chart::Image spectrum_chart(const PowerSpectrum& sp) {
+  chart::Chart c;
+  c.title = "Power spectrum of the pressure drop after start-up (Welch)";
+  c.x.label = "frequency (Hz)";
+  c.y.label = "power spectral density (Pa^2/Hz)";
+  c.y.log = true;
+  chart::Series s;
+  for (std::size_t k = 1; k < sp.frequency.size(); ++k) {  // the mean (0 Hz) is removed
+    if (sp.frequency[k] > 20.0) break;
+    s.x.push_back(sp.frequency[k]);
+    s.y.push_back(sp.psd[k]);
+  }
+  c.series.push_back(std::move(s));
+  c.legend = false;
+  if (sp.dominant_frequency_refined > 0.0) {
+    char label[64];
+    std::snprintf(label, sizeof label, "dominant %.2f Hz", sp.dominant_frequency_refined);
+    c.vlines.push_back({sp.dominant_frequency_refined, label, chart::palette(1), true, 1.5});
+  }
+  return chart::render(c, 1200, 600, font());
+}
+
+// Bubbles after start-up: equivalent diameter against height, and rise velocity against
+// diameter beside the two-dimensional relation u_b = 0.5 sqrt(g D_e) (Pyle and Harrison), drawn
+// as a reference, not a fit.
+chart::Image bubble_figure(const std::vector<BubbleRow>& rows, double start) {
+  chart::Chart size;
+  size.title = "Bubble size against height";
+  size.x.label = "height of the centroid (m)";
+  size.y.label = "equivalent diameter (mm)";
+  chart::Series pts;
+  pts.mark = chart::Mark::Points;
+  pts.marker_size = 4.0;
+  chart::Chart rise;
+  rise.title = "Rise velocity against size";
+  rise.x.label = "equivalent diameter (mm)";
+  rise.y.label = "rise velocity (m/s)";
+  chart::Series vel = pts;
+  vel.label = "bubbles";
+  double dmax = 0.0;
+  for (const BubbleRow& b : rows) {
+    if (b.t <= start || b.event == BubbleEvent::erupted || b.event == BubbleEvent::vanished) continue;
+    pts.x.push_back(b.y);
+    pts.y.push_back(1e3 * b.d_eq);
+    if (b.has_velocity) {
+      vel.x.push_back(1e3 * b.d_eq);
+      vel.y.push_back(b.vy);
+      dmax = std::max(dmax, b.d_eq);
+    }
+  }
+  size.series.push_back(std::move(pts));
+  size.legend = false;
+  rise.series.push_back(std::move(vel));
+  chart::Series ref;
+  ref.label = "u_b = 0.5 sqrt(g D_e) (2D, Pyle & Harrison)";
+  ref.dashed = true;
+  for (int k = 0; k <= 50 && dmax > 0.0; ++k) {
+    const double d = dmax * k / 50.0;
+    ref.x.push_back(1e3 * d);
+    ref.y.push_back(0.5 * std::sqrt(9.81 * d));
+  }
+  rise.series.push_back(std::move(ref));
+  return chart::render_grid({size, rise}, 2, 900, 600, font(),
+                            "Bubbles after start-up (bubbles.csv)");
+}
+
+// Lacey's mixing index of the lower and upper halves of the bed (by initial height).
+chart::Image mixing_chart(const std::vector<MixingSample>& m) {
+  std::vector<double> t, index;
+  for (const MixingSample& s : m) {
+    t.push_back(s.t);
+    index.push_back(s.index);
+  }
+  chart::Chart c = against_time("Mixing of the lower and upper halves of the bed (Lacey index)",
+                                "Lacey index M (0 segregated, 1 random)", t, index);
+  c.y.min = 0.0;
+  c.y.max = 1.1;
+  c.hlines.push_back({1.0, "random", {150, 150, 150}, true, 1.0});
+  return chart::render(c, 1200, 600, font());
+}
+
+}  // namespace
+
 std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
                                   const std::vector<Trajectory>& tracks, double width,
                                   double height, bool has_gas) {
@@ -221,6 +307,19 @@ std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
     const auto p = (fs::path(dir) / "overlap.png").string();
     chart::render(c, 1200, 600, font()).write_png(p);
     written.push_back(p);
+  }
+  if (r.dp_spectrum.ok) {
+    const auto p = (fs::path(dir) / "dp_spectrum.png").string();
+    spectrum_chart(r.dp_spectrum).write_png(p);
+    written.push_back(p);
+  }
+  if (r.bubbles) {
+    const auto p = (fs::path(dir) / "bubbles.png").string();
+    bubble_figure(r.bubble_rows, r.summary.value("averaging_start_s", 0.0)).write_png(p);
+    written.push_back(p);
+    const auto m = (fs::path(dir) / "mixing.png").string();
+    mixing_chart(r.mixing).write_png(m);
+    written.push_back(m);
   }
   if (!tracks.empty()) {
     const auto p = (fs::path(dir) / "trajectory.png").string();

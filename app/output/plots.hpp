@@ -41,8 +41,10 @@ void plot_sweep(const std::string& path, const SweepResult& r, const std::string
 // sweep.csv, summary.json (with umf_m_s) and sweep.png in the sweep's output folder.
 void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene);
 
-// Writes DIR/dp.png (when the run has gas), DIR/overlap.png and, for each trajectory,
-// DIR/trajectory.png (path in the bed, x and y against time). Returns the files written.
+// Writes DIR/dp.png (when the run has gas), DIR/overlap.png, DIR/dp_spectrum.png (when dp has a
+// spectrum), DIR/bubbles.png and DIR/mixing.png (with the bubble analysis) and, for the
+// trajectories, DIR/trajectory.png (path in the bed, x and y against time). Returns the files
+// written.
 std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
                                   const std::vector<Trajectory>& tracks, double width,
                                   double height, bool has_gas);

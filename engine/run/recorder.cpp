@@ -10,7 +10,7 @@
 
 namespace fluidbed {
 
-RunRecorder::RunRecorder(const Simulation& sim, std::int64_t last_step)
+RunRecorder::RunRecorder(const Simulation& sim, std::int64_t last_step, bool bubbles)
     : first_step_(sim.steps()), last_step_(last_step) {
   const Settings& s = sim.settings();
   row_every_ = std::max<std::int64_t>(1, steps_for(s.diagnostics.output_interval, s.time.dt));
@@ -18,6 +18,11 @@ RunRecorder::RunRecorder(const Simulation& sim, std::int64_t last_step)
   bed_ = s.scene.kind == "bed";
   if (s.scene.kind == "drop") bounces_.emplace(sim.dem(), s.physics.gravity);
   last_gas_steps_ = sim.has_gas() ? sim.coupling_diagnostics().gas_steps : 0;
+  has_gas_ = sim.has_gas();
+  if (bubbles) {
+    bubbles_.emplace(sim);
+    bubbles_->analyse(sim);
+  }
 }
 
 void RunRecorder::gas_step_done(const CouplingDiagnostics& c) {
@@ -56,6 +61,7 @@ bool RunRecorder::after_step(const Simulation& sim) {
     }
   }
   if (bounces_) bounces_->observe(sim.dem());
+  if (bubbles_) bubbles_->after_step(sim);
   if (sim.steps() % row_every_ == 0 || sim.steps() == last_step_) write_row(sim);
   return gas_stepped;
 }
@@ -93,6 +99,10 @@ void RunRecorder::write_row(const Simulation& sim) {
     const Settings& s = sim.settings();
     bed_height_sum_ += measure_packing(sim.dem().particles(), s.domain.width, s.domain.thickness).bed_height;
     ++bed_height_samples_;
+  }
+  if (bubbles_) {
+    pending_.bubbles = bubbles_->bubbles_now();
+    pending_.regime = bubbles_->regime_now();
   }
   rows_.push_back(pending_);
   pending_ = TimeseriesRow{};
@@ -139,6 +149,10 @@ nlohmann::json RunRecorder::summary(const Simulation& sim, double wall) const {
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
   j["state_hash"] = hash;
   if (bounces_) add_drop_summary(j);
+  if (bubbles_) {
+    j["bubbles"] = bubbles_->bubbles_summary(startup_);
+    j["mixing"] = bubbles_->mixing_summary();
+  }
   if (bed_height_samples_ > 0)  // the bubbling bed's mean height after start-up (rows)
     j["bed_height_mean_m"] = bed_height_sum_ / static_cast<double>(bed_height_samples_);
   if (s.scene.kind == "packing" || s.scene.kind == "bed") {
@@ -180,11 +194,23 @@ void RunRecorder::add_gas_summary(const Simulation& sim, nlohmann::json& j) cons
       dps.push_back(row.dp);
     }
   const CycleStats cyc = analyse_cycles(ts, dps);
+  j["dp_spectrum"] = to_json(dp_spectrum());
   j["dp_dominant_period_s"] = cyc.ok ? nlohmann::json(cyc.dominant_period) : nlohmann::json(nullptr);
   j["dp_dominant_power_share"] = cyc.dominant_power_share;
   j["dp_cycles"] = cyc.cycles;
   j["dp_cycle_length_mean_s"] = cyc.cycle_mean;
   j["dp_cycle_length_cv"] = cyc.cycle_cv;
+}
+
+PowerSpectrum RunRecorder::dp_spectrum() const {
+  if (!has_gas_ || rows_.size() < 2) return PowerSpectrum{};
+  std::vector<double> dps;
+  for (const auto& row : rows_)
+    if (row.t > startup_) dps.push_back(row.dp);
+  // The rows are one output interval apart, the last one possibly shorter (the run's end).
+  const double interval = rows_[1].t - rows_[0].t;
+  if (dps.size() < 8 || !(interval > 0.0)) return PowerSpectrum{};
+  return welch_spectrum(dps, interval);
 }
 
 void RunRecorder::add_drop_summary(nlohmann::json& j) const {

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "analysis/bounce_tracker.hpp"
+#include "analysis/spectrum.hpp"
+#include "run/bubble_recorder.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed {
@@ -28,12 +30,17 @@ struct TimeseriesRow {
   double mass_residual = 0.0;
   double max_cfl = 0.0;
   double fluid_force_y = 0.0;
+  // With the bubble analysis (run --bubbles): bubbles in the latest frame, and the regime of
+  // the frames of the trailing BubbleRecorder::kRegimeWindow.
+  int bubbles = 0;
+  Regime regime = Regime::fixed;
 };
 
 class RunRecorder {
  public:
-  // Starts recording `sim` as it is now; the run ends at step `last_step`.
-  RunRecorder(const Simulation& sim, std::int64_t last_step);
+  // Starts recording `sim` as it is now; the run ends at step `last_step`. With `bubbles`,
+  // the bubble analysis runs beside it (its first frame now).
+  RunRecorder(const Simulation& sim, std::int64_t last_step, bool bubbles = false);
 
   // After every step. Returns true when the step ended with a gas step.
   bool after_step(const Simulation& sim);
@@ -42,6 +49,11 @@ class RunRecorder {
   std::vector<TimeseriesRow> take_rows() { return std::move(rows_); }
   // summary.json of the run so far; wall: seconds of wall time the steps took.
   nlohmann::json summary(const Simulation& sim, double wall) const;
+  // Welch's spectrum of dp after start-up (sampled at the rows; not ok without gas).
+  PowerSpectrum dp_spectrum() const;
+  // The bubble analysis (null without --bubbles).
+  const BubbleRecorder* bubbles() const { return bubbles_ ? &*bubbles_ : nullptr; }
+  BubbleRecorder* bubbles() { return bubbles_ ? &*bubbles_ : nullptr; }
 
  private:
   void gas_step_done(const CouplingDiagnostics& c);
@@ -53,6 +65,8 @@ class RunRecorder {
   double startup_ = 0.0;  // s, averaging_start: where "after start-up" begins
   bool bed_ = false;      // scene.kind = "bed": the bed height is sampled at every row
   std::optional<BounceTracker> bounces_;
+  std::optional<BubbleRecorder> bubbles_;
+  bool has_gas_ = false;
   std::vector<TimeseriesRow> rows_;
   TimeseriesRow pending_;
 

@@ -57,7 +57,7 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   const Settings& s = sim.settings();
   const double until = options.until >= 0.0 ? options.until : s.time.end;
   const std::int64_t last_step = steps_for(until, s.time.dt);
-  RunRecorder recorder(sim, last_step);
+  RunRecorder recorder(sim, last_step, options.bubbles);
 
   const auto wall_start = std::chrono::steady_clock::now();
   auto next_progress = options.progress_interval;
@@ -80,7 +80,13 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   }
   RunResult result;
   result.summary = recorder.summary(sim, wall_now());
+  result.dp_spectrum = recorder.dp_spectrum();
   result.rows = recorder.take_rows();
+  if (BubbleRecorder* b = recorder.bubbles()) {
+    result.bubbles = true;
+    result.bubble_rows = b->take_rows();
+    result.mixing = b->mixing();
+  }
   return result;
 }
 
@@ -90,18 +96,41 @@ void write_run_outputs(const std::string& dir, const RunResult& r) {
   if (ec) throw InputError("cannot create output folder " + dir + ": " + ec.message());
   std::string csv =
       "t,dp,max_overlap_ratio,max_wall_overlap_ratio,kinetic_energy,contacts,pair_contacts,"
-      "wall_contacts,simple_iterations,mass_residual,max_cfl,fluid_force_y\n";
+      "wall_contacts,simple_iterations,mass_residual,max_cfl,fluid_force_y";
+  csv += r.bubbles ? ",bubbles,regime\n" : "\n";
   char line[256];
   for (const auto& row : r.rows) {
-    std::snprintf(line, sizeof line, "%.9g,%.9g,%.6g,%.6g,%.9g,%d,%d,%d,%d,%.3g,%.4g,%.6g\n",
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.6g,%.6g,%.9g,%d,%d,%d,%d,%.3g,%.4g,%.6g",
                   row.t, row.dp, row.max_overlap_ratio, row.max_wall_overlap_ratio,
                   row.kinetic_energy, row.pair_contacts + row.wall_contacts, row.pair_contacts,
                   row.wall_contacts, row.simple_iterations, row.mass_residual, row.max_cfl,
                   row.fluid_force_y);
     csv += line;
+    if (r.bubbles) {
+      std::snprintf(line, sizeof line, ",%d,%s", row.bubbles, to_string(row.regime));
+      csv += line;
+    }
+    csv += "\n";
   }
   const std::filesystem::path d(dir);
   write_file_atomically((d / "timeseries.csv").string(), [&](std::ostream& o) { o << csv; });
+  if (r.dp_spectrum.ok)
+    write_file_atomically((d / "dp_spectrum.csv").string(),
+                          [&](std::ostream& o) { write_spectrum_csv(o, r.dp_spectrum); });
+  if (r.bubbles) {
+    write_file_atomically((d / "bubbles.csv").string(), [&](std::ostream& o) {
+      write_bubbles_csv_header(o);
+      write_bubbles_csv_rows(o, r.bubble_rows);
+    });
+    write_file_atomically((d / "mixing.csv").string(), [&](std::ostream& o) {
+      o << "t,lacey_index\n";
+      char buf[64];
+      for (const MixingSample& m : r.mixing) {
+        std::snprintf(buf, sizeof buf, "%.9g,%.6g\n", m.t, m.index);
+        o << buf;
+      }
+    });
+  }
   write_file_atomically((d / "summary.json").string(),
                         [&](std::ostream& o) { o << r.summary.dump(2) << "\n"; });
 }

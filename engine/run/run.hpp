@@ -26,17 +26,24 @@ struct RunOptions {
   // neighbours by 7 % of a diameter or more.
   double cfl_limit = 1.0;
   double porosity_min = 0.3;
+  // The bubble analysis beside the run ([bubbles]: bubbles.csv, mixing.csv, summary `bubbles`).
+  bool bubbles = false;
 };
 
 struct RunResult {
   nlohmann::json summary;
   std::vector<TimeseriesRow> rows;
+  bool bubbles = false;              // the rows carry the bubble columns
+  std::vector<BubbleRow> bubble_rows;  // bubbles.csv
+  std::vector<MixingSample> mixing;  // mixing.csv
+  PowerSpectrum dp_spectrum;         // dp_spectrum.csv (when ok)
 };
 
 // Steps `sim` to the end time. Throws SimulationFailure when the run blows up.
 RunResult run_simulation(Simulation& sim, const RunOptions& options);
 
-// Writes DIR/summary.json and DIR/timeseries.csv (each complete or not at all).
+// Writes DIR/summary.json and DIR/timeseries.csv (each complete or not at all), and
+// DIR/dp_spectrum.csv, DIR/bubbles.csv and DIR/mixing.csv when the run has them.
 void write_run_outputs(const std::string& dir, const RunResult& r);
 
 }  // namespace fluidbed

@@ -113,6 +113,22 @@ struct DiagnosticsSettings {
   std::string save_state;          // write the final state here (relative to --out)
 };
 
+// Bubble and slug analysis (`run --bubbles`; analysis/bubbles.hpp says how each is used).
+// Lengths of 0 scale with the particle diameter d.
+struct BubbleSection {
+  double threshold = 0.8;       // void fraction above which a fine cell is void, in (0, 1)
+  double min_diameter = 0.0;    // m, smallest equivalent diameter of a bubble (0: 2 d)
+  double interval = 0.01;       // s, between analysed frames
+  double slug_fraction = 0.6;   // a bubble wider than this share of the bed's width is a slug
+  double cell_size = 0.0;       // m, fine grid of the void fraction (0: d / 2)
+  double window = 0.0;          // m, side of the void fraction's sample window (0: 2.5 d)
+  int min_track_frames = 3;     // frames a bubble must be seen in to count (shorter: flicker)
+  double eruption_gap = 0.1;    // s, eruptions closer in time are one burst at the surface
+  double slugging_min_fraction = 0.25;  // regime "slugging": share of frames with a slug
+  double spouting_min_fraction = 0.5;   // regime "spouting": share of frames the jet is open
+  double bed_min_fraction = 0.05;  // dense regions smaller than this share are splashes
+};
+
 struct Settings {
   SceneInfo scene;
   DomainSettings domain;
@@ -124,6 +140,7 @@ struct Settings {
   InletSettings inlet;
   CouplingSettings coupling;
   DiagnosticsSettings diagnostics;
+  BubbleSection bubbles;
   std::string source_dir = ".";  // folder of the scene file, for relative paths (not a TOML key)
   // The packed bed's state file for placement "packed" (not a TOML key). A Simulation never
   // makes it: the caller asks for it (run/packed_bed.hpp: prepare_packed_bed), which runs and
@@ -218,6 +235,21 @@ void visit_fields(CouplingSettings& s, V&& v) {
   v("particle_steps_per_gas_step", s.particle_steps_per_gas_step, "");
 }
 
+template <class V>
+void visit_fields(BubbleSection& s, V&& v) {
+  v("threshold", s.threshold, "");
+  v("min_diameter", s.min_diameter, "m");
+  v("interval", s.interval, "s");
+  v("slug_fraction", s.slug_fraction, "");
+  v("cell_size", s.cell_size, "m");
+  v("window", s.window, "m");
+  v("min_track_frames", s.min_track_frames, "");
+  v("eruption_gap", s.eruption_gap, "s");
+  v("slugging_min_fraction", s.slugging_min_fraction, "");
+  v("spouting_min_fraction", s.spouting_min_fraction, "");
+  v("bed_min_fraction", s.bed_min_fraction, "");
+}
+
 // v(section_name, section_struct) for every section.
 template <class V>
 void visit_sections(Settings& s, V&& v) {
@@ -231,6 +263,7 @@ void visit_sections(Settings& s, V&& v) {
   v("inlet", s.inlet);
   v("coupling", s.coupling);
   v("diagnostics", s.diagnostics);
+  v("bubbles", s.bubbles);
 }
 
 }  // namespace fluidbed

@@ -104,6 +104,24 @@ void validate(const Settings& s) {
   if (s.coupling.particle_steps_per_gas_step < 1)
     refuse("coupling.particle_steps_per_gas_step", "must be at least 1");
 
+  const BubbleSection& b = s.bubbles;
+  if (!(b.threshold > 0.0 && b.threshold < 1.0))
+    refuse("bubbles.threshold", "must be in (0, 1) (got " + std::to_string(b.threshold) + ")");
+  non_negative("bubbles.min_diameter", b.min_diameter);
+  positive("bubbles.interval", b.interval);
+  if (!(b.slug_fraction > 0.0 && b.slug_fraction <= 1.0))
+    refuse("bubbles.slug_fraction", "must be in (0, 1]");
+  non_negative("bubbles.cell_size", b.cell_size);
+  non_negative("bubbles.window", b.window);
+  if (b.min_track_frames < 1) refuse("bubbles.min_track_frames", "must be at least 1");
+  non_negative("bubbles.eruption_gap", b.eruption_gap);
+  if (!(b.slugging_min_fraction > 0.0 && b.slugging_min_fraction <= 1.0))
+    refuse("bubbles.slugging_min_fraction", "must be in (0, 1]");
+  if (!(b.spouting_min_fraction > 0.0 && b.spouting_min_fraction <= 1.0))
+    refuse("bubbles.spouting_min_fraction", "must be in (0, 1]");
+  if (!(b.bed_min_fraction >= 0.0 && b.bed_min_fraction < 1.0))
+    refuse("bubbles.bed_min_fraction", "must be in [0, 1)");
+
   positive("diagnostics.output_interval", s.diagnostics.output_interval);
   non_negative("diagnostics.averaging_start", s.diagnostics.averaging_start);
   if (!(s.diagnostics.overlap_limit > 0.0 && s.diagnostics.overlap_limit <= 1.0))
