@@ -67,7 +67,7 @@ BENCHMARK(BM_ParticleVolumeShares);
 // The porosity of a bed that has fallen for 0.3 s (2400 spheres, DEM only): eq 22 per cell.
 std::vector<double> settled_porosity(const GasGrid& g) {
   Settings s;
-  s.scene.kind = "packing";
+  s.scene.kind = SceneKind::Packing;
   Simulation sim(s);
   for (int k = 0; k < 20000; ++k) sim.step();
   const Particles& p = sim.dem().particles();

@@ -26,7 +26,7 @@ BENCHMARK(BM_ContactForce);
 Simulation& settled_bed() {
   static Simulation* sim = [] {
     Settings s;
-    s.scene.kind = "packing";
+    s.scene.kind = SceneKind::Packing;
     auto* p = new Simulation(s);
     for (int k = 0; k < 20000; ++k) p->step();
     return p;

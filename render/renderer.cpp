@@ -354,7 +354,7 @@ struct Renderer::Impl {
     rect(over, {in.x1, in.y0 - (top ? t : 0.0f), in.x1 + t, in.y1 + t}, th.wall);
     if (top) rect(over, {in.x0, in.y0 - t, in.x1, in.y0}, th.wall);
     const float bottom0 = in.y1, bottom1 = in.y1 + t;
-    if (s.inlet_kind == "jet" && s.jet_width > 0.0) {
+    if (s.inlet_kind == InletKind::Jet && s.jet_width > 0.0) {
       // The slots: gaps in the bottom wall, each with its jet's arrow coming up into it.
       const int jets = std::max(1, s.jets);
       float wall_from = in.x0 - t;
@@ -369,7 +369,7 @@ struct Renderer::Impl {
                   std::max(0.6f, 0.45f * half), {th.jet.r, th.jet.g, th.jet.b});
       }
       rect(over, {wall_from, bottom0, in.x1 + t, bottom1}, th.wall);
-    } else if (s.inlet_kind == "uniform") {
+    } else if (s.inlet_kind == InletKind::Uniform) {
       // A distributor: the bottom wall dashed.
       const float dash = std::max(3.0f, 0.6f * l.font);
       rect(over, {in.x0 - t, bottom0, in.x0, bottom1}, th.wall);
@@ -424,7 +424,7 @@ struct Renderer::Impl {
     y += 1.5f * l.font;
     if (s.has_gas()) {
       std::string u = format("U = %.2f m/s", s.superficial_velocity);
-      if (s.inlet_kind == "jet") u += format(" (jet %.1f m/s)", s.jet_velocity);
+      if (s.inlet_kind == InletKind::Jet) u += format(" (jet %.1f m/s)", s.jet_velocity);
       label(u, x, y, l.font, th.text);
       y += 1.3f * l.font;
       if (with_time) label(format("\xce\x94p = %.0f Pa", s.dp), x, y, l.font, th.text);

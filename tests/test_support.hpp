@@ -31,9 +31,9 @@ inline double analytic_restitution(double k, double eta, double m) {
 // A single particle at (x, y) with velocity (vx, vy): the drop and rolling scenes.
 inline Settings single_particle(double x, double y, double vx = 0.0, double vy = 0.0) {
   Settings s;
-  s.scene.kind = "drop";
+  s.scene.kind = SceneKind::Drop;
   s.particles.count = 1;
-  s.particles.placement = "single";
+  s.particles.placement = Placement::Single;
   s.particles.x = x;
   s.particles.y = y;
   s.particles.vx = vx;

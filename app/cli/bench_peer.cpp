@@ -152,7 +152,7 @@ int bench_peer_command(const RunArgs& a, const std::string& peer) {
     throw InputError("--peer \"" + peer + "\": unknown peer; known: liggghts");
   const std::string scene = a.scene.empty() ? asset_dir() + "/scenes/packing.toml" : a.scene;
   Settings s = load_scene(scene, a.overrides);
-  if (s.particles.placement == "packed")
+  if (s.particles.placement == Placement::Packed)
     throw InputError(
         "bench --peer liggghts: particles.placement \"packed\": the deck makes the packing "
         "first while fluidbed starts from its cache, not the same work; bench a lattice or "

@@ -38,12 +38,16 @@ constexpr double kDropTolerance = 0.01;         // 1 % of the drop height after 
 constexpr double kRestitutionTolerance = 0.01;  // in e
 
 struct Variant {
-  std::string integrator, displacement;
+  Integrator integrator = Integrator::Newmark;
+  Displacement displacement = Displacement::Incremental;
   std::string label() const {
-    return (integrator == "newmark" ? std::string("predictor-corrector (newmark)") : integrator) +
-           ", " + displacement;
+    return (integrator == Integrator::Newmark ? std::string("predictor-corrector (newmark)")
+                                              : option_string(integrator)) +
+           ", " + option_string(displacement);
   }
-  std::string short_label(bool by_contact) const { return by_contact ? displacement : integrator; }
+  std::string short_label(bool by_contact) const {
+    return by_contact ? option_string(displacement) : option_string(integrator);
+  }
 };
 
 struct Config {
@@ -161,11 +165,11 @@ struct RestState {
 RestState make_rest_state(const Config& c, const std::string& dir) {
   Settings s;
   s.scene.name = "rest-packing";
-  s.scene.kind = "bed";
+  s.scene.kind = SceneKind::Bed;
   s.domain.width = c.rest_width;
   s.domain.height = c.rest_height;
   s.particles.count = c.rest_count;
-  s.particles.placement = "lattice";
+  s.particles.placement = Placement::Lattice;
   s.particles.fill_height = c.rest_fill;
   s.contact.friction = 0.0;
   s.contact.damping = 0.5;
@@ -189,7 +193,7 @@ RestState make_rest_state(const Config& c, const std::string& dir) {
 
 void packing_test(const Config& c, const RestState& rest, const Variant& v, StepResult& out) {
   Settings s = rest.settings;
-  s.particles.placement = "state";
+  s.particles.placement = Placement::State;
   s.particles.state_file = rest.path;
   s.contact.damping = 0.0;
   s.contact.friction = 0.0;
@@ -400,7 +404,8 @@ Table table(const Accuracy& a) {
   const double e_th = restitution_from_damping(50000.0, 0.15, a.m);
   for (std::size_t v = 0; v < nv; ++v)
     for (const auto& r : res[v]) {
-      t.add({c.variants[v].label(), c.variants[v].integrator, c.variants[v].displacement,
+      t.add({c.variants[v].label(), option_string(c.variants[v].integrator),
+             option_string(c.variants[v].displacement),
              num(r.dt), num(r.mult), num(r.dt / a.tc), num(r.drop_ratio), num(r.drop_err),
              num(r.e_mean), num(e_th), num(r.e_err), num(r.e_spread), num(r.growth),
              num(r.drift), r.stable() ? "yes" : "no", num(r.cost), num(r.cost_wall), num(r.psteps),
@@ -567,8 +572,8 @@ std::string findings(const Accuracy& a) {
   if (!c.by_contact) {
     double pc = NAN, se = NAN;
     for (std::size_t v = 0; v < nv; ++v) {
-      if (c.variants[v].integrator == "newmark") pc = a.limits[v];
-      if (c.variants[v].integrator == "symplectic_euler") se = a.limits[v];
+      if (c.variants[v].integrator == Integrator::Newmark) pc = a.limits[v];
+      if (c.variants[v].integrator == Integrator::SymplecticEuler) se = a.limits[v];
     }
     std::ostringstream note;
     note << "\nSymplectic Euler's largest stable step " << mult_text(se)
@@ -656,16 +661,19 @@ Report accuracy_study(const Options& o, const Config& c) {
 
 Report integrators_study(const Options& o) {
   const Config c = make_config(o.size,
-                               {{"newmark", "incremental"},
-                                {"velocity_verlet", "incremental"},
-                                {"symplectic_euler", "incremental"}},
+                               {{Integrator::Newmark, Displacement::Incremental},
+                                {Integrator::VelocityVerlet, Displacement::Incremental},
+                                {Integrator::SymplecticEuler, Displacement::Incremental}},
                                false);
   return accuracy_study(o, c);
 }
 
 Report contact_study(const Options& o) {
   const Config c =
-      make_config(o.size, {{"newmark", "incremental"}, {"newmark", "geometric"}}, true);
+      make_config(o.size,
+                  {{Integrator::Newmark, Displacement::Incremental},
+                   {Integrator::Newmark, Displacement::Geometric}},
+                  true);
   Report r = accuracy_study(o, c);
   r.findings +=
       "\nThe incremental form starts each contact's spring at the overlap it would have had at "

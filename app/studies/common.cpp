@@ -189,9 +189,9 @@ double json_number(const nlohmann::json& j, const char* key) {
 Settings drop_scene(double y) {
   Settings s;
   s.scene.name = "drop";
-  s.scene.kind = "drop";
+  s.scene.kind = SceneKind::Drop;
   s.particles.count = 1;
-  s.particles.placement = "single";
+  s.particles.placement = Placement::Single;
   s.particles.y = y;
   return s;
 }

@@ -109,7 +109,7 @@ Coupling measure(const Options& o) {
   base.diagnostics.averaging_start = averaging;
   if (o.log) o.log("packed bed (cached after the first time)");
   const std::string packed = packed_bed_state(base, o.log);
-  base.particles.placement = "state";
+  base.particles.placement = Placement::State;
   base.particles.state_file = packed;
   const std::vector<CouplingSetting> sets = settings_for(o.size);
   m.res = RunPool(o.workers).map<CouplingResult>(sets.size(), [&](std::size_t i) {
@@ -131,7 +131,7 @@ Coupling measure(const Options& o) {
     try {
       Settings fixed = s;
       fixed.particles.frozen = true;
-      fixed.inlet.kind = "uniform";
+      fixed.inlet.kind = InletKind::Uniform;
       r.umf = fixed_bed_umf(fixed, 1.5, 2.3, fixed_time, r.fixed_dp);
       r.umf_ok = std::isfinite(r.umf);
       if (!r.umf_ok) r.umf_error = "the secant did not converge";

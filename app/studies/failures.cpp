@@ -29,7 +29,7 @@ struct CaseResult {
 // The bed from the packed state, as the cases that start from it share.
 Settings packed_bed(Size size, const std::string& packed) {
   Settings s = bed_scene(size);
-  s.particles.placement = "state";
+  s.particles.placement = Placement::State;
   s.particles.state_file = packed;
   return s;
 }
@@ -73,13 +73,13 @@ std::vector<Case> make_cases(Size size, const std::string& packed) {
            "a bed of very soft spheres (contact.stiffness = 10 N/m, overlap limit 0.9) settling in "
            "still air",
            bed_scene(size), 1.0};
-    c.settings.particles.placement = "lattice";
+    c.settings.particles.placement = Placement::Lattice;
     c.settings.particles.fill_height = size == Size::Tiny ? 0.12 : 0.3;
     c.settings.contact.stiffness = 10.0;
     c.settings.contact.damping = 0.02;
     c.settings.time.dt = contact_duration(10.0, paper_particle_mass()) / 30.0;
     c.settings.diagnostics.overlap_limit = 0.9;
-    c.settings.inlet.kind = "none";
+    c.settings.inlet.kind = InletKind::None;
     c.settings.inlet.superficial_velocity = 0.0;
     cases.push_back(c);
   }

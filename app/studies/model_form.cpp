@@ -65,7 +65,7 @@ std::vector<FormResult> measure(const Options& o) {
   Settings bed = bed_scene(o.size);
   if (o.log) o.log("packed bed (cached after the first time)");
   const std::string packed = packed_bed_state(bed, o.log);
-  bed.particles.placement = "state";
+  bed.particles.placement = Placement::State;
   bed.particles.state_file = packed;
   std::vector<FormResult> forms(2);
   for (int k = 0; k < 2; ++k) {
@@ -95,7 +95,7 @@ std::vector<FormResult> measure(const Options& o) {
     try {
       Settings fixed = s;
       fixed.particles.frozen = true;
-      fixed.inlet.kind = "uniform";
+      fixed.inlet.kind = InletKind::Uniform;
       double dp = 0.0;
       f.fixed_umf = f.model_a ? fixed_bed_umf(fixed, 1.5, 2.3, 0.03, dp)
                               : fixed_bed_umf(fixed, 2.3, 4.5, 0.03, dp);

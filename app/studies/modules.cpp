@@ -48,7 +48,7 @@ ModuleResult run_module(const ModuleConfig& c, const Settings& bed, double until
       s.contact.tangential_damping_ratio = 0.0;
     }
     if (o == "gas-at-rest") {
-      s.inlet.kind = "none";
+      s.inlet.kind = InletKind::None;
       s.inlet.superficial_velocity = 0.0;
     }
     if (o == "frozen") s.particles.frozen = true;
@@ -89,7 +89,7 @@ Modules measure(const Options& o) {
   m.until = m.tiny ? 0.05 : 0.1;
   Settings bed = bed_scene(o.size);
   if (o.log) o.log("packed bed (cached after the first time)");
-  bed.particles.placement = "state";
+  bed.particles.placement = Placement::State;
   bed.particles.state_file = packed_bed_state(bed_scene(o.size), o.log);
   bed.diagnostics.averaging_start = 0.0;
   const std::vector<ModuleConfig> cfgs = {

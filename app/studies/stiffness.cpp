@@ -58,7 +58,7 @@ StiffPoint run_stiffness(double k, Size size, double until, double averaging,
   p.rest_overlap = 0.0;
   for (const auto& row : p.packing.result.rows)
     if (row.t > pk.time.end - 0.1) p.rest_overlap = std::max(p.rest_overlap, row.max_overlap_ratio);
-  bed.particles.placement = "state";
+  bed.particles.placement = Placement::State;
   bed.particles.state_file = state;
   p.bed = run_point(bed, until);
   return p;

@@ -87,7 +87,7 @@ std::unique_ptr<Simulation> ViewModel::build() const {
   Settings s = scene_;
   // The particles of the starting state (initial heights for the mixing colours come from it);
   // the caller then loads the whole state, gas and contact history included.
-  s.particles.placement = "state";
+  s.particles.placement = Placement::State;
   s.particles.state_file = start_file_;
   if (ideal_) {
     s.contact.damping = 0.0;

@@ -57,15 +57,12 @@ void validate_gas(const GasGrid& g, const GasParams& p) {
     throw InputError(field_error("viscosity", p.viscosity, "must be >= 0 (Pa s)"));
   if (!std::isfinite(p.gravity))
     throw InputError(field_error("gravity", p.gravity, "must be finite (m/s^2)"));
-  if (p.inlet != "jet" && p.inlet != "uniform" && p.inlet != "none")
-    throw InputError("gas.inlet = \"" + p.inlet +
-                     "\": unknown inlet (known: \"jet\", \"uniform\", \"none\")");
   if (!(p.superficial_velocity >= 0.0) || !std::isfinite(p.superficial_velocity))
     throw InputError(
         field_error("superficial_velocity", p.superficial_velocity, "must be >= 0 (m/s)"));
-  if (p.inlet == "jet" && p.jets < 1)
+  if (p.inlet == InletKind::Jet && p.jets < 1)
     throw InputError(field_error("jets", p.jets, "must be >= 1"));
-  if (p.inlet == "jet" && !(p.jet_width > 0.0 && p.jet_width * p.jets <= g.width)) {
+  if (p.inlet == InletKind::Jet && !(p.jet_width > 0.0 && p.jet_width * p.jets <= g.width)) {
     std::ostringstream rule;
     rule << "must be > 0 and its jets no wider than the bed (" << g.width << " m)";
     throw InputError(field_error("jet_width", p.jet_width, rule.str()));
@@ -110,9 +107,9 @@ GasSolver::GasSolver(const GasGrid& grid, const GasParams& params)
   // Inlet: face velocity per unit superficial velocity. A jet slot edge inside a face gives that
   // face its share of the slot, so the inflow is U W dz whatever the alignment.
   inlet_profile_.assign(nx_, 0.0);
-  if (params_.inlet == "uniform") {
+  if (params_.inlet == InletKind::Uniform) {
     std::fill(inlet_profile_.begin(), inlet_profile_.end(), 1.0);
-  } else if (params_.inlet == "jet") {
+  } else if (params_.inlet == InletKind::Jet) {
     const double open = params_.jets * params_.jet_width;
     for (int k = 0; k < params_.jets; ++k) {
       const double centre = (k + 0.5) * grid_.width / params_.jets;
@@ -168,7 +165,7 @@ GasSolver::GasSolver(const GasGrid& grid, const GasParams& params)
 }
 
 double GasSolver::jet_velocity() const {
-  return params_.inlet == "jet" ? s_.superficial_velocity * grid_.width / (params_.jets * params_.jet_width)
+  return params_.inlet == InletKind::Jet ? s_.superficial_velocity * grid_.width / (params_.jets * params_.jet_width)
                                 : s_.superficial_velocity;
 }
 

@@ -47,6 +47,7 @@
 
 #include "cfd/gas_grid.hpp"
 #include "cfd/pressure_solver.hpp"
+#include "scene/options.hpp"
 
 namespace fluidbed {
 
@@ -54,7 +55,7 @@ struct GasParams {
   double density = 1.205;             // kg/m^3, air
   double viscosity = 1.8e-5;          // Pa s
   double gravity = 9.81;              // m/s^2, along -y
-  std::string inlet = "jet";          // "jet", "uniform" or "none" (closed bottom)
+  InletKind inlet = InletKind::Jet;   // a jet slot, a uniform distributor or none (closed bottom)
   double superficial_velocity = 2.8;  // m/s, mean over the whole bottom
   double jet_width = 0.01;            // m, each slot (jet: U_jet = U W / (jets jet_width))
   int jets = 1;                       // slots centred at (k + 1/2) W / jets

@@ -13,10 +13,6 @@
 
 namespace fluidbed {
 
-Integrator parse_integrator(const std::string& name) {
-  return parse_option<Integrator>("time.integrator", name);
-}
-
 DemSolver::DemSolver(const DemParams& d, Particles particles)
     : walls_(d.walls),
       params_(d.contact),

@@ -18,7 +18,6 @@
 
 namespace fluidbed {
 
-Integrator parse_integrator(const std::string& name);
 
 // What the particle model needs from a scene, built once from the settings
 // (sim/model_params.hpp: dem_params_for).

@@ -46,7 +46,7 @@ bool same_law(const ContactParams& a, const ContactParams& b) {
 }
 
 void check_integrator(const Settings& s, const std::string& what) {
-  if (s.time.integrator == "symplectic_euler")
+  if (s.time.integrator == Integrator::SymplecticEuler)
     throw InputError(what +
                      "time.integrator \"symplectic_euler\": LIGGGHTS integrates with velocity "
                      "Verlet (fix nve/sphere), second order; export with --set "
@@ -89,15 +89,17 @@ PackingStage packing_stage(const Settings& s) {
 
 // The particles at the start of the deck.
 Particles start_particles(const Settings& s) {
-  const std::string& p = s.particles.placement;
-  if (p == "lattice" || p == "single") return place_particles(s);
-  if (p == "packed") {
-    Settings lattice = s;
-    lattice.particles.placement = "lattice";
-    return place_particles(lattice);
+  switch (s.particles.placement) {
+    case Placement::Lattice:
+    case Placement::Single: return place_particles(s);
+    case Placement::Packed: {
+      Settings lattice = s;
+      lattice.particles.placement = Placement::Lattice;
+      return place_particles(lattice);
+    }
+    case Placement::State: return load_scene_state(s).particles;
   }
-  if (p == "state") return load_scene_state(s).particles;
-  throw InputError("particles.placement \"" + p +
+  throw InputError("particles.placement \"" + option_string(s.particles.placement) +
                    "\": the LIGGGHTS export knows lattice, single, state and packed");
 }
 
@@ -165,7 +167,7 @@ struct Plane {
 void write_deck(std::ostream& out, const Settings& s, const LiggghtsExportOptions& o,
                 const std::vector<std::string>& notes) {
   const ContactParams law = contact_params(s);
-  const bool packed = s.particles.placement == "packed";
+  const bool packed = s.particles.placement == Placement::Packed;
   const PackingStage pack = packed ? packing_stage(s) : PackingStage{};
   const std::string model = "model hooke/stiffness tangential history";
   const double dt0 = packed ? pack.dt : s.time.dt;
@@ -281,14 +283,14 @@ std::vector<std::string> notes_for(const Settings& s, const LiggghtsExportOption
   if (s.gas.enabled) {
     std::string g = "the gas is left out: LIGGGHTS is DEM only, so the scene's [gas] (" +
                     std::to_string(s.gas.cells_x) + " x " + std::to_string(s.gas.cells_y) +
-                    " cells, inlet \"" + s.inlet.kind + "\"";
-    if (s.inlet.kind != "none") g += ", U = " + num(s.inlet.superficial_velocity) + " m/s";
+                    " cells, inlet \"" + option_string(s.inlet.kind) + "\"";
+    if (s.inlet.kind != InletKind::None) g += ", U = " + num(s.inlet.superficial_velocity) + " m/s";
     g += ") exerts no drag or pressure force here";
     n.push_back(g);
   }
   n.push_back("LIGGGHTS integrates with velocity Verlet (fix nve/sphere); the scene uses \"" +
-              s.time.integrator + "\"");
-  if (s.contact.displacement == "incremental")
+              option_string(s.time.integrator) + "\"");
+  if (s.contact.displacement == Displacement::Incremental)
     n.push_back(
         "the normal overlap is geometric, R_i + R_j - |x_i - x_j|; the scene accumulates it "
         "from increments (\"incremental\", eqs 13-17); the tangential displacement is "
@@ -301,10 +303,10 @@ std::vector<std::string> notes_for(const Settings& s, const LiggghtsExportOption
                     "they never press on an in-plane sphere)"
                   : "no front and back walls, as in fluidbed; the z force is held at zero "
                     "instead, so the spheres stay on the mid-plane");
-  if (s.particles.placement == "state")
+  if (s.particles.placement == Placement::State)
     n.push_back("the start is the saved state " + s.particles.state_file +
                 " without its contact history: tangential springs start at zero");
-  if (s.particles.placement == "packed")
+  if (s.particles.placement == Placement::Packed)
     n.push_back(
         "the packed start is made by this deck, as a first stage (the lattice start falls "
         "for particles.packing_time), without the gas");

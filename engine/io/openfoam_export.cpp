@@ -82,8 +82,8 @@ Mesh mesh_for(const Settings& s) {
   const int nx = s.gas.cells_x;
   const double w = s.domain.width, dx = w / nx;
   Mesh m;
-  if (s.inlet.kind != "jet") {
-    m.segments.push_back({0.0, w, nx, s.inlet.kind == "uniform"});
+  if (s.inlet.kind != InletKind::Jet) {
+    m.segments.push_back({0.0, w, nx, s.inlet.kind == InletKind::Uniform});
     return m;
   }
   const double x0 = 0.5 * (w - s.inlet.jet_width), x1 = 0.5 * (w + s.inlet.jet_width);
@@ -98,9 +98,9 @@ Mesh mesh_for(const Settings& s) {
 }
 
 double inlet_velocity(const Settings& s) {
-  if (s.inlet.kind == "jet")
+  if (s.inlet.kind == InletKind::Jet)
     return s.inlet.superficial_velocity * s.domain.width / s.inlet.jet_width;
-  if (s.inlet.kind == "uniform") return s.inlet.superficial_velocity;
+  if (s.inlet.kind == InletKind::Uniform) return s.inlet.superficial_velocity;
   return 0.0;
 }
 
@@ -110,7 +110,7 @@ void write_block_mesh(std::ostream& out, const Settings& s, const Mesh& m) {
       << num(s.domain.height) << " m), z through the slab (0 to " << num(s.domain.thickness)
       << " m),\n// one cell deep: the scene's gas grid of " << s.gas.cells_x << " x "
       << s.gas.cells_y << " cells";
-  if (s.inlet.kind == "jet") out << ", in three blocks so that the jet slot is a patch of its own";
+  if (s.inlet.kind == InletKind::Jet) out << ", in three blocks so that the jet slot is a patch of its own";
   out << ".\n\nscale 1;\n\nvertices\n(\n";
   // Vertex 4 i + 2 z + y: x = the i-th block edge, y in {0, H}, z in {0, T}.
   std::vector<double> xs = {m.segments.front().x0};
@@ -238,7 +238,7 @@ void write_solution(std::ostream& out, const Settings& s) {
       << "        relTol          0;\n    }\n}\n\n";
   out << "PIMPLE\n{\n    nOuterCorrectors 1;\n    nCorrectors     2;\n"
       << "    momentumPredictor yes;\n    nNonOrthogonalCorrectors 0;\n";
-  if (s.inlet.kind == "none") out << "    pRefCell        0;\n    pRefValue       0;\n";
+  if (s.inlet.kind == InletKind::None) out << "    pRefCell        0;\n    pRefValue       0;\n";
   out << "}\n\nrelaxationFactors\n{\n}\n";
 }
 
@@ -294,7 +294,7 @@ void write_velocity(std::ostream& out, const Settings& s, const Mesh& m) {
   const double u = inlet_velocity(s);
   out << foam_header("volVectorField", "0", "U.air");
   out << "// Interstitial gas velocity. The inlet gives the superficial (plug) velocity ";
-  if (s.inlet.kind == "jet")
+  if (s.inlet.kind == InletKind::Jet)
     out << "of the jet,\n// U W / jet_width = " << num(s.inlet.superficial_velocity) << " x "
         << num(s.domain.width) << " / " << num(s.inlet.jet_width) << " = " << num(u) << " m/s";
   else
@@ -319,7 +319,7 @@ void write_velocity(std::ostream& out, const Settings& s, const Mesh& m) {
 
 void write_positions(std::ostream& out, const Settings& s, const Particles& p) {
   out << foam_header("vectorField", "constant", "kinematicCloudPositions");
-  out << "// The scene's start (particles.placement = \"" << s.particles.placement
+  out << "// The scene's start (particles.placement = \"" << option_name(s.particles.placement)
       << "\"), one sphere per line, x y z (m); z is the slab's mid-plane.\n\n";
   out << p.size() << "\n(\n";
   const std::string z = num(0.5 * s.domain.thickness);
@@ -442,15 +442,17 @@ void write_allrun(std::ostream& out, const Settings& s, const std::vector<std::s
 
 Particles start_particles(const Settings& s,
                           const std::function<void(const std::string&)>& notify) {
-  const std::string& p = s.particles.placement;
-  if (p == "lattice" || p == "single") return place_particles(s);
-  if (p == "state") return load_scene_state(s).particles;
-  if (p == "packed") {
-    Settings from = s;
-    from.particles.state_file = packed_bed_state(s, notify);
-    return load_scene_state(from).particles;
+  switch (s.particles.placement) {
+    case Placement::Lattice:
+    case Placement::Single: return place_particles(s);
+    case Placement::State: return load_scene_state(s).particles;
+    case Placement::Packed: {
+      Settings from = s;
+      from.particles.state_file = packed_bed_state(s, notify);
+      return load_scene_state(from).particles;
+    }
   }
-  throw InputError("particles.placement \"" + p +
+  throw InputError("particles.placement \"" + option_string(s.particles.placement) +
                    "\": the OpenFOAM export knows lattice, single, state and packed");
 }
 
@@ -481,7 +483,7 @@ std::vector<std::string> notes_for(const Settings& s, const DpmCollisionLaw& law
   n.push_back(
       "collisions: DPMFoam integrates them with its own velocity-Verlet scheme and the "
       "geometric overlap (fluidbed: \"" +
-      s.time.integrator + "\", \"" + s.contact.displacement +
+      option_string(s.time.integrator) + "\", \"" + option_string(s.contact.displacement) +
       "\" overlaps); collisionResolutionSteps = " + std::to_string(law.resolution_steps) +
       " (fluidbed's steps per contact) keeps DPMFoam from sub-cycling the scene's dt");
   const double eps = 0.42, u_mf = 1.9;
@@ -520,7 +522,7 @@ std::vector<std::string> notes_for(const Settings& s, const DpmCollisionLaw& law
     n.push_back(
         "the start's velocities and spins are left out: DPMFoam's manual injection "
         "starts every sphere at rest");
-  if (s.particles.placement == "state" || s.particles.placement == "packed")
+  if (s.particles.placement == Placement::State || s.particles.placement == Placement::Packed)
     n.push_back(
         "the start's contact history is left out: springs start from zero and overlaps "
         "from the geometry");
@@ -540,10 +542,10 @@ OpenfoamCase write_openfoam_case(const Settings& s, const std::string& dir,
         "it --to liggghts, or add a [gas] section)");
   if (s.particles.frozen)
     throw InputError("particles.frozen: DPMFoam's particles cannot be held in place");
-  if (s.inlet.kind == "jet" && s.inlet.jets != 1)
+  if (s.inlet.kind == InletKind::Jet && s.inlet.jets != 1)
     throw InputError("inlet.jets = " + std::to_string(s.inlet.jets) +
                      ": the DPMFoam case has one central jet slot (export a bed with jets = 1)");
-  if (s.inlet.kind == "jet" && (s.gas.cells_x < 3 || s.inlet.jet_width >= s.domain.width))
+  if (s.inlet.kind == InletKind::Jet && (s.gas.cells_x < 3 || s.inlet.jet_width >= s.domain.width))
     throw InputError(
         "inlet.jet_width / gas.cells_x: the jet slot needs a cell of its own and one "
         "on each side (cells_x >= 3, jet_width < width)");

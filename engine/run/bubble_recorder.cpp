@@ -32,7 +32,7 @@ BedGeometry bubble_geometry_for(const Settings& s) {
   g.thickness = s.domain.thickness;
   g.particle_diameter = s.particles.diameter;
   g.gravity = s.physics.gravity;
-  const bool jet = s.gas.enabled && s.inlet.kind == "jet";
+  const bool jet = s.gas.enabled && s.inlet.kind == InletKind::Jet;
   g.jets = jet_slots(s.domain.width, jet ? s.inlet.jets : 0, s.inlet.jet_width);
   return g;
 }

@@ -18,11 +18,11 @@ Settings packing_settings_for(const Settings& bed) {
   Settings p = bed;
   p.scene = SceneInfo{};
   p.scene.name = "packing";
-  p.scene.kind = "packing";
-  p.particles.placement = "lattice";
+  p.scene.kind = SceneKind::Packing;
+  p.particles.placement = Placement::Lattice;
   p.particles.state_file.clear();
   p.particles.frozen = false;
-  p.inlet.kind = "none";
+  p.inlet.kind = InletKind::None;
   p.inlet.superficial_velocity = 0.0;
   p.time.end = bed.particles.packing_time;
   p.diagnostics = DiagnosticsSettings{};
@@ -79,7 +79,7 @@ std::string packed_bed_state(const Settings& bed,
 }
 
 void prepare_packed_bed(Settings& bed, const std::function<void(const std::string&)>& notify) {
-  if (bed.particles.placement == "packed" && bed.packed_state.empty())
+  if (bed.particles.placement == Placement::Packed && bed.packed_state.empty())
     bed.packed_state = packed_bed_state(bed, notify);
 }
 

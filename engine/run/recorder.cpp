@@ -15,8 +15,8 @@ RunRecorder::RunRecorder(const Simulation& sim, std::int64_t last_step, bool bub
   const Settings& s = sim.settings();
   row_every_ = std::max<std::int64_t>(1, steps_for(s.diagnostics.output_interval, s.time.dt));
   startup_ = s.diagnostics.averaging_start;
-  bed_ = s.scene.kind == "bed";
-  if (s.scene.kind == "drop") bounces_.emplace(sim.dem(), s.physics.gravity);
+  bed_ = s.scene.kind == SceneKind::Bed;
+  if (s.scene.kind == SceneKind::Drop) bounces_.emplace(sim.dem(), s.physics.gravity);
   last_gas_steps_ = sim.has_gas() ? sim.coupling_diagnostics().gas_steps : 0;
   has_gas_ = sim.has_gas();
   if (bubbles) {
@@ -120,7 +120,7 @@ nlohmann::json RunRecorder::summary(const Simulation& sim, double wall) const {
   nlohmann::json j;
   j["status"] = "completed";
   j["scene"] = s.scene.name;
-  j["kind"] = s.scene.kind;
+  j["kind"] = option_string(s.scene.kind);
   j["particles"] = p.size();
   j["steps"] = steps;
   j["dt_s"] = dt;
@@ -130,8 +130,8 @@ nlohmann::json RunRecorder::summary(const Simulation& sim, double wall) const {
   j["wall_s_per_sim_s"] = sim_time > 0.0 ? wall / sim_time : 0.0;
   j["particle_steps_per_s"] =
       wall > 0.0 ? static_cast<double>(steps) * static_cast<double>(p.size()) / wall : 0.0;
-  j["integrator"] = s.time.integrator;
-  j["contact_displacement"] = s.contact.displacement;
+  j["integrator"] = option_string(s.time.integrator);
+  j["contact_displacement"] = option_string(s.contact.displacement);
   j["gas"] = sim.has_gas();
   j["averaging_start_s"] = startup_;
   j["dp_mean_pa"] = dp_samples_ > 0 ? nlohmann::json(dp_sum_ / static_cast<double>(dp_samples_))
@@ -155,7 +155,7 @@ nlohmann::json RunRecorder::summary(const Simulation& sim, double wall) const {
   }
   if (bed_height_samples_ > 0)  // the bubbling bed's mean height after start-up (rows)
     j["bed_height_mean_m"] = bed_height_sum_ / static_cast<double>(bed_height_samples_);
-  if (s.scene.kind == "packing" || s.scene.kind == "bed") {
+  if (s.scene.kind == SceneKind::Packing || s.scene.kind == SceneKind::Bed) {
     const PackingMetrics m = measure_packing(p, s.domain.width, s.domain.thickness);
     j["bed_height_m"] = m.bed_height;
     j["solid_fraction"] = m.solid_fraction;
@@ -174,7 +174,7 @@ void RunRecorder::add_gas_summary(const Simulation& sim, nlohmann::json& j) cons
   const GasSolver& g = *sim.gas();
   j["superficial_velocity_m_s"] = g.superficial_velocity();
   j["jet_velocity_m_s"] = g.jet_velocity();
-  j["inlet"] = s.inlet.kind;
+  j["inlet"] = option_string(s.inlet.kind);
   j["pressure_gradient_force"] = s.coupling.pressure_gradient_force;
   j["particle_steps_per_gas_step"] = s.coupling.particle_steps_per_gas_step;
   j["gas_steps"] = gas_steps_;

@@ -63,7 +63,7 @@ class RunRecorder {
 
   std::int64_t first_step_ = 0, last_step_ = 0, row_every_ = 1;
   double startup_ = 0.0;  // s, averaging_start: where "after start-up" begins
-  bool bed_ = false;      // scene.kind = "bed": the bed height is sampled at every row
+  bool bed_ = false;      // scene.kind = SceneKind::Bed: the bed height is sampled at every row
   std::optional<BounceTracker> bounces_;
   std::optional<BubbleRecorder> bubbles_;
   bool has_gas_ = false;

@@ -95,6 +95,12 @@ std::string_view option_name(E value) {
   return "?";
 }
 
+// The same as a string, for messages and files.
+template <class E>
+std::string option_string(E value) {
+  return std::string(option_name(value));
+}
+
 // The known names, "a, b, c".
 template <class E>
 std::string option_names() {

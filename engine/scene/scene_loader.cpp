@@ -34,7 +34,7 @@ struct Reader {
   std::string where(std::string_view key) const {
     return origin + ": " + section + "." + std::string(key);
   }
-  void type_error(std::string_view key, const toml::node& n, const char* expected) const {
+  void type_error(std::string_view key, const toml::node& n, const std::string& expected) const {
     throw InputError(where(key) + " must be " + expected + ", not " + describe(n));
   }
 
@@ -80,6 +80,16 @@ struct Reader {
     auto v = n->value_exact<std::string>();
     if (!v) type_error(key, *n, "a string");
     field = *v;
+  }
+  // A named choice: the name turned into its enum here, once (scene/options.hpp).
+  template <class E>
+    requires is_option_v<E>
+  void operator()(std::string_view key, E& field, std::string_view) const {
+    const toml::node* n = table.get(key);
+    if (!n) return;
+    auto v = n->value_exact<std::string>();
+    if (!v) type_error(key, *n, "a string (one of: " + option_names<E>() + ")");
+    field = parse_option<E>(origin + ": " + section + "." + std::string(key), *v);
   }
 };
 
@@ -192,6 +202,11 @@ struct TomlWriter {
   }
   void operator()(std::string_view key, bool v, std::string_view) const {
     *out << key << " = " << (v ? "true" : "false") << "\n";
+  }
+  template <class E>
+    requires is_option_v<E>
+  void operator()(std::string_view key, E v, std::string_view) const {
+    *out << key << " = " << toml::value<std::string>(std::string(option_name(v))) << "\n";
   }
   void operator()(std::string_view key, double v, std::string_view unit) const {
     *out << key << " = " << toml::value<double>(v);

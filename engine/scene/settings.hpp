@@ -5,13 +5,15 @@
 #include <cstdint>
 #include <string>
 
+#include "scene/options.hpp"
+
 namespace fluidbed {
 
 struct SceneInfo {
   std::string name = "unnamed";
   // What the run measures on top of the common diagnostics: "bed" (none extra), "drop" (bounce
   // heights and restitution), "packing" (bed height and solid fraction).
-  std::string kind = "bed";
+  SceneKind kind = SceneKind::Bed;
   std::string description;
 };
 
@@ -31,7 +33,7 @@ struct ParticleSettings {
   // "state": positions, velocities, spins and contact history from state_file;
   // "packed": the paper's packing of this scene's particles (lattice start, gas at rest, falling
   // for packing_time), generated once and cached.
-  std::string placement = "lattice";
+  Placement placement = Placement::Lattice;
   std::uint64_t seed = 1;    // random placement
   double fill_height = 0.0;  // m, lattice cells only below this height (0: the whole domain)
   double x = 0.075;          // m, "single" placement
@@ -56,7 +58,7 @@ struct ContactSettings {
   double friction = 0.3;                  // gamma, particles and walls
   // "incremental": the paper's eqs 13-17 (displacements accumulated from increments, the first
   // one over the backward-projected time since touching); "geometric": delta_n = R_i + R_j - L.
-  std::string displacement = "incremental";
+  Displacement displacement = Displacement::Incremental;
   // Neighbour-list skin as a fraction of the largest diameter: candidate pairs are kept while
   // closer than R_i + R_j + skin, and the list is rebuilt when a particle has moved half of it.
   // Only the speed depends on it, never the results.
@@ -67,7 +69,7 @@ struct TimeSettings {
   double dt = 1.5e-5;  // s
   double end = 1.0;    // s, simulated time of a run (--until overrides)
   // "newmark" (the paper's predictor-corrector, eqs 24-28), "velocity_verlet", "symplectic_euler"
-  std::string integrator = "newmark";
+  Integrator integrator = Integrator::Newmark;
 };
 
 struct PhysicsSettings {
@@ -89,7 +91,7 @@ struct GasSettings {
 struct InletSettings {
   // "jet": a plug through a slot at the centre of the bottom (the paper); "uniform": a
   // distributor over the whole bottom; "none": a closed bottom (gas at rest).
-  std::string kind = "jet";
+  InletKind kind = InletKind::Jet;
   double superficial_velocity = 2.8;  // m/s, mean over the bottom (jet: U width / jet_width)
   double jet_width = 0.01;            // m, width of each jet's slot
   // Jets along the bottom, slot k centred at (k + 1/2) width / jets (1: the paper's central

@@ -11,8 +11,8 @@ DemParams dem_params_for(const Settings& s) {
   d.contact.eta_n = s.contact.damping;
   d.contact.eta_t = s.contact.damping * s.contact.tangential_damping_ratio;
   d.contact.mu = s.contact.friction;
-  d.incremental = s.contact.displacement == "incremental";
-  d.integrator = parse_integrator(s.time.integrator);
+  d.incremental = s.contact.displacement == Displacement::Incremental;
+  d.integrator = s.time.integrator;
   d.dt = s.time.dt;
   d.gravity = s.physics.gravity;
   d.width = s.domain.width;

@@ -24,13 +24,13 @@ Particles place_particles(const Settings& s) {
   const std::size_t n = static_cast<std::size_t>(ps.count);
   p.resize(n);
   for (std::size_t i = 0; i < n; ++i) p.set_sphere(i, ps.diameter, ps.density);
-  if (ps.placement == "single") {
+  if (ps.placement == Placement::Single) {
     p.x[0] = ps.x;
     p.y[0] = ps.y;
     p.vx[0] = ps.vx;
     p.vy[0] = ps.vy;
     p.w[0] = ps.spin;
-  } else if (ps.placement == "lattice") {
+  } else if (ps.placement == Placement::Lattice) {
     const double top = ps.fill_height > 0.0 ? ps.fill_height : s.domain.height;
     const auto sites = lattice_sites(s.domain.width, top, ps.diameter);
     if (sites.size() < n)
@@ -58,7 +58,7 @@ Particles place_particles(const Settings& s) {
       p.y[i] = sites[order[i]].y;
     }
   } else {
-    throw InputError("particles.placement \"" + ps.placement + "\" does not place particles");
+    throw InputError("particles.placement \"" + option_string(ps.placement) + "\" does not place particles");
   }
   return p;
 }

@@ -14,12 +14,12 @@ namespace fluidbed {
 namespace {
 
 DemSolver make_dem(const Settings& s) {
-  if (s.particles.placement != "state" && s.particles.placement != "packed")
+  if (s.particles.placement != Placement::State && s.particles.placement != Placement::Packed)
     return DemSolver(dem_params_for(s), place_particles(s));
   // A saved configuration starts a new experiment: its contact history is kept, its clock
   // restarts, and the gas starts from rest with this scene's inflow.
   Settings from = s;
-  if (s.particles.placement == "packed") {
+  if (s.particles.placement == Placement::Packed) {
     if (s.packed_state.empty())
       throw InputError("particles.placement = \"packed\": the packed bed was not prepared "
                        "(prepare_packed_bed, run/packed_bed.hpp, before building the simulation)");
@@ -53,7 +53,7 @@ Simulation::Simulation(const Settings& s)
   note_inlet_speed();
   coupler_->freeze_drag(p);
   // A fresh start has no carried acceleration beyond gravity: add the gas's share to it.
-  if (s.particles.placement != "state" && s.particles.placement != "packed") {
+  if (s.particles.placement != Placement::State && s.particles.placement != Placement::Packed) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       p.ax[i] += p.ext_fx[i] * p.inv_mass[i];
       p.ay[i] += p.ext_fy[i] * p.inv_mass[i];

@@ -45,7 +45,7 @@ void take_snapshot(const Simulation& sim, Snapshot& out) {
     out.porosity = g->porosity();
     out.pressure = g->pressure();
   } else {
-    out.inlet_kind.clear();
+    out.inlet_kind = InletKind::None;
     out.nx = out.ny = 0;
     out.gas_ux.clear();
     out.gas_uy.clear();

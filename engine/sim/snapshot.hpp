@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/options.hpp"
+
 namespace fluidbed {
 
 class Simulation;
@@ -20,7 +22,7 @@ struct Snapshot {
   // Domain and inlet.
   double width = 0.0, height = 0.0, thickness = 0.0;  // m
   bool top_wall = false;
-  std::string inlet_kind;               // "jet", "uniform", "none" (or "" without gas)
+  InletKind inlet_kind = InletKind::None;  // the inlet (None without gas)
   double jet_width = 0.0;               // m, each slot
   int jets = 1;                         // slots centred at (k + 1/2) width / jets
   double superficial_velocity = 0.0;    // m/s

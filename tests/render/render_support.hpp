@@ -21,7 +21,7 @@ inline Snapshot empty_box(double width = 0.1, double height = 0.1) {
   s.width = width;
   s.height = height;
   s.thickness = 0.004;
-  s.inlet_kind = "jet";
+  s.inlet_kind = InletKind::Jet;
   s.jet_width = 0.01;
   s.superficial_velocity = 2.8;
   s.jet_velocity = 42.0;

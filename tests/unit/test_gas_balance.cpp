@@ -16,7 +16,7 @@ constexpr double kDt = 1.5e-5;  // s, the paper's step
 
 GasParams closed_box() {
   GasParams p;
-  p.inlet = "none";
+  p.inlet = InletKind::None;
   return p;
 }
 

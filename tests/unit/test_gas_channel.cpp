@@ -44,7 +44,7 @@ SteadyRun run_to_steady(GasSolver& gas, double dt, int max_steps, double change_
 
 GasParams channel_params(double U) {
   GasParams p;
-  p.inlet = "uniform";
+  p.inlet = InletKind::Uniform;
   p.superficial_velocity = U;
   return p;
 }

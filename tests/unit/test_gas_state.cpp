@@ -202,7 +202,7 @@ TEST(GasInlet, SeveralJetsShareTheInflowEqually) {
   g.height = 0.4;
   g.depth = 0.004;
   GasParams p;
-  p.inlet = "jet";
+  p.inlet = InletKind::Jet;
   p.jets = 3;
   p.jet_width = 0.01;
   p.superficial_velocity = 2.0;

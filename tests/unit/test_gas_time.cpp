@@ -15,7 +15,7 @@ namespace {
 std::vector<double> stirred_box(double dt, bool picard) {
   const GasGrid g;
   GasParams p;
-  p.inlet = "none";
+  p.inlet = InletKind::None;
   p.picard = picard;
   p.tolerance = 1e-10;  // so that the iteration error is far below the time error
   p.max_iterations = 200;

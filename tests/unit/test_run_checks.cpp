@@ -22,7 +22,7 @@ Settings small_bed() {
   s.gas.enabled = true;
   s.gas.cells_x = 6;
   s.gas.cells_y = 15;
-  s.inlet.kind = "uniform";
+  s.inlet.kind = InletKind::Uniform;
   s.inlet.superficial_velocity = 1.0;
   return s;
 }
@@ -74,9 +74,9 @@ TEST(RunChecks, PorosityBelowTheFloorFailsNamingTheCell) {
 
 TEST(RunChecks, NonFiniteStartIsRefusedBeforeTheFirstStep) {
   Settings s;
-  s.scene.kind = "drop";
+  s.scene.kind = SceneKind::Drop;
   s.particles.count = 1;
-  s.particles.placement = "single";
+  s.particles.placement = Placement::Single;
   s.particles.vy = NAN;  // the scene loader refuses this; a program setting it directly is caught
   Simulation sim(s);
   RunOptions o;

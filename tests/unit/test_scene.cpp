@@ -34,8 +34,8 @@ TEST(Scene, DefaultsAreThePapers) {
   EXPECT_DOUBLE_EQ(s.domain.width, 0.15);
   EXPECT_DOUBLE_EQ(s.domain.height, 0.9);
   EXPECT_DOUBLE_EQ(s.domain.thickness, 0.004);
-  EXPECT_EQ(s.time.integrator, "newmark");
-  EXPECT_EQ(s.contact.displacement, "incremental");
+  EXPECT_EQ(s.time.integrator, Integrator::Newmark);
+  EXPECT_EQ(s.contact.displacement, Displacement::Incremental);
 }
 
 TEST(Scene, ReadsValuesAndOverrides) {
@@ -45,7 +45,7 @@ TEST(Scene, ReadsValuesAndOverrides) {
   EXPECT_DOUBLE_EQ(s.particles.density, 1000.5);  // the override wins over the file
   EXPECT_DOUBLE_EQ(s.time.dt, 3e-5);
   EXPECT_DOUBLE_EQ(s.contact.damping, 0.0);
-  EXPECT_EQ(s.time.integrator, "velocity_verlet");
+  EXPECT_EQ(s.time.integrator, Integrator::VelocityVerlet);
   EXPECT_TRUE(s.domain.top_wall);
 }
 
@@ -69,6 +69,7 @@ TEST(Scene, RefusesImpossibleValues) {
   EXPECT_NE(error_of("[time]\ndt = 0\n").find("time.dt"), std::string::npos);
   EXPECT_NE(error_of("[contact]\nfriction = -1\n").find("contact.friction"), std::string::npos);
   EXPECT_NE(error_of("[time]\nintegrator = \"rk4\"\n").find("time.integrator"), std::string::npos);
+  EXPECT_NE(error_of("[inlet]\nkind = \"nozzle\"\n").find("inlet.kind"), std::string::npos);
   EXPECT_NE(error_of("[domain]\nthickness = 0.003\n").find("domain.thickness"), std::string::npos);
   // 10,000 spheres of 4 mm cannot fit in 0.15 m x 0.9 m (8,325 lattice cells).
   const std::string many = error_of("[particles]\ncount = 10000\n");

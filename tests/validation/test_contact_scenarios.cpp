@@ -21,8 +21,8 @@ Collision head_on(double dt, const std::string& integrator, const std::string& d
   Settings s;
   s.physics.gravity = 0.0;
   s.time.dt = dt;
-  s.time.integrator = integrator;
-  s.contact.displacement = displacement;
+  s.time.integrator = parse_option<Integrator>("time.integrator", integrator);
+  s.contact.displacement = parse_option<Displacement>("contact.displacement", displacement);
   s.domain.width = 0.2;
   s.domain.height = 0.2;
   // 1 mm apart, closing at 1 m/s; tilted line of centres to exercise both axes.
@@ -62,7 +62,7 @@ TEST(Rolling, SlidingSphereEndsRollingAtFiveSevenths) {
   for (const char* integrator : {"newmark", "velocity_verlet", "symplectic_euler"}) {
     Settings s = single_particle(0.02, 0.002, 1.0, 0.0);
     s.domain.width = 1.0;
-    s.time.integrator = integrator;
+    s.time.integrator = parse_option<Integrator>("time.integrator", integrator);
     DemSolver dem(dem_params_for(s), make_particles({{0.02, 0.002, 1.0, 0.0, 0.0}}));
     const auto steps = static_cast<std::int64_t>(0.3 / s.time.dt);
     for (std::int64_t k = 0; k < steps; ++k) dem.step();

@@ -60,7 +60,7 @@ TEST(CoupledBed, NewtonsThirdLawHoldsAtEveryStep) {
   // cancel to round-off at every gas step, also when the gas is sub-stepped.
   for (int sub : {1, 3}) {
     Settings s = paper_bed();
-    s.particles.placement = "lattice";
+    s.particles.placement = Placement::Lattice;
     s.particles.count = 300;
     s.particles.fill_height = 0.3;
     s.inlet.superficial_velocity = 1.5;

@@ -14,7 +14,7 @@ namespace {
 
 Settings small_bed() {
   Settings s;
-  s.scene.kind = "packing";
+  s.scene.kind = SceneKind::Packing;
   s.domain.width = 0.06;
   s.domain.height = 0.2;
   s.particles.count = 300;
@@ -43,7 +43,7 @@ TEST(Determinism, SameSceneSameHash) {
 TEST(Determinism, SaveLoadContinueIsBitExact) {
   for (const char* integrator : {"newmark", "velocity_verlet", "symplectic_euler"}) {
     Settings s = small_bed();
-    s.time.integrator = integrator;
+    s.time.integrator = parse_option<Integrator>("time.integrator", integrator);
     Simulation straight(s);
     const auto expected = run_steps(straight, 8000);
 
@@ -67,7 +67,7 @@ TEST(Determinism, CoupledSaveLoadContinueIsBitExact) {
   s.domain.height = 0.9;
   s.particles.fill_height = 0.2;
   s.gas.enabled = true;
-  s.inlet.kind = "jet";
+  s.inlet.kind = InletKind::Jet;
   s.inlet.superficial_velocity = 2.0;
   s.coupling.particle_steps_per_gas_step = 2;
   Simulation straight(s);
@@ -125,7 +125,7 @@ TEST(Determinism, StateWithoutLidStartsASceneWithOne) {
 
   Settings open = s, lid = s;
   for (Settings* t : {&open, &lid}) {
-    t->particles.placement = "state";
+    t->particles.placement = Placement::State;
     t->particles.state_file = path;
   }
   lid.domain.top_wall = true;

@@ -29,9 +29,9 @@ DropResult drop(double gap, double dt, double damping, const std::string& integr
                 int bounces, const std::string& displacement = "incremental") {
   Settings s = single_particle(0.075, kR + gap);
   s.time.dt = dt;
-  s.time.integrator = integrator;
+  s.time.integrator = parse_option<Integrator>("time.integrator", integrator);
   s.contact.damping = damping;
-  s.contact.displacement = displacement;
+  s.contact.displacement = parse_option<Displacement>("contact.displacement", displacement);
   Simulation sim(s);
   BounceTracker tracker(sim.dem(), s.physics.gravity);
   // Enough time for the bounces (each flight is shorter than the first fall and rise).

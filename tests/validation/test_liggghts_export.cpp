@@ -294,7 +294,7 @@ TEST(LiggghtsExport, SingleParticleKeepsItsVelocityAndSpin) {
   s.contact.damping = 0.1;
   s.contact.tangential_damping_ratio = 0.25;
   s.contact.friction = 0.4;
-  s.time.integrator = "velocity_verlet";
+  s.time.integrator = Integrator::VelocityVerlet;
   s.time.end = 0.25;
   const fs::path dir = temp_dir("liggghts-single");
   const LiggghtsCase c = write_liggghts_case(s, dir.string());
@@ -339,7 +339,7 @@ TEST(LiggghtsExport, PackedStartRunsThePackingFirstWithThePackingScenesLaw) {
   EXPECT_EQ(find_all(deck, "reset_timestep").size(), 1u);
   // The start is the lattice the packing starts from.
   Settings lattice = s;
-  lattice.particles.placement = "lattice";
+  lattice.particles.placement = Placement::Lattice;
   const Particles p = place_particles(lattice);
   const DataFile d = read_data(c.data);
   ASSERT_EQ(d.atom.size(), p.size());
@@ -355,7 +355,7 @@ TEST(LiggghtsExport, StateStartWritesTheSavedPositionsAndVelocities) {
   for (int k = 0; k < 200; ++k) sim.step();  // into a wall contact, with history
   sim.save_state((dir / "drop.state").string());
   Settings t = s;
-  t.particles.placement = "state";
+  t.particles.placement = Placement::State;
   t.particles.state_file = "drop.state";
   t.source_dir = dir.string();
   const LiggghtsCase c = write_liggghts_case(t, (dir / "case").string());
