@@ -1,7 +1,7 @@
 #pragma once
 // Studies: speed against accuracy, stability limits and model choices, measured by the program
 // itself (`fluidbed study NAME --out DIR`). Each study reads in four steps: it measures its
-// points (side by side on a RunPool, studies/run_pool.hpp, each simulation on one thread), builds
+// points (side by side on a RunPool, core/run_pool.hpp, each simulation on one thread), builds
 // the table DIR/study.csv (every point a row; a failed run is a row with its reason, never a
 // crash), draws its charts as PNG, and writes the summary (DIR/summary.md): what was measured,
 // the key figures, and what a user should choose.
@@ -15,7 +15,7 @@
 #include "dem/contact_law.hpp"
 #include "run/run.hpp"
 #include "scene/settings.hpp"
-#include "studies/run_pool.hpp"
+#include "core/run_pool.hpp"
 
 namespace fluidbed::app::study {
 

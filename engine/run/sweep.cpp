@@ -1,17 +1,17 @@
 #include "run/sweep.hpp"
 
 #include <algorithm>
-#include <numbers>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <mutex>
+#include <numbers>
 #include <numeric>
-#include <thread>
 
 #include "core/errors.hpp"
+#include "core/run_pool.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
 #include "sim/simulation.hpp"
@@ -110,13 +110,6 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   // down while the others take the independent increasing runs.
   result.up[n - 1] = run_point(scene, o, "up", o.velocities[n - 1], "");
   report(result.up[n - 1]);
-  std::atomic<std::size_t> next_up{0};
-  auto up_worker = [&] {
-    for (std::size_t k; (k = next_up.fetch_add(1)) < n - 1;) {
-      result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
-      report(result.up[k]);
-    }
-  };
   auto down_chain = [&] {
     const SweepPoint* from = &result.up[n - 1];
     for (std::size_t k = n - 1; k-- > 0;) {
@@ -131,15 +124,14 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
       from = &result.down[k];
     }
   };
-  if (o.threads == 1) {
-    up_worker();
-    down_chain();
-  } else {
-    std::vector<std::thread> pool;
-    pool.emplace_back(down_chain);
-    for (int t = 1; t < o.threads; ++t) pool.emplace_back(up_worker);
-    for (auto& t : pool) t.join();
-  }
+  // The chain first, so that one worker walks it while the others share the increasing runs.
+  std::vector<std::function<void()>> tasks = {down_chain};
+  for (std::size_t k = 0; k + 1 < n; ++k)
+    tasks.push_back([&, k] {
+      result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
+      report(result.up[k]);
+    });
+  RunPool(o.threads).run(tasks);
 
   // Umf from the decreasing branch, with the shared top point.
   std::vector<double> us, dps;

@@ -2,8 +2,7 @@
 // Independent runs side by side: `workers` threads take tasks from a shared counter, each task
 // on one thread, so each simulation keeps to one core and the results do not depend on how many
 // threads there are. The first exception a task throws is rethrown once every thread finished.
-// Used by the studies; written with no app dependency, to move to engine/core/ for the sweep
-// (engine/run/sweep.cpp keeps a pool of its own until then).
+// Used by the sweep (run/sweep.cpp), the studies and reproduce.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -15,7 +14,7 @@
 
 #include "core/threads.hpp"
 
-namespace fluidbed::app {
+namespace fluidbed {
 
 class RunPool {
  public:
@@ -67,4 +66,4 @@ class RunPool {
   int workers_;
 };
 
-}  // namespace fluidbed::app
+}  // namespace fluidbed
