@@ -45,7 +45,7 @@ class Coupler {
   // core that stepped it); empty: even blocks. Results are the same bits for any thread count.
   const std::vector<double>& compute_porosity(const Particles& p, double time,
                                               const std::vector<std::size_t>& split = {});
-  const std::vector<double>& porosity() const { return eps_; }
+  const std::vector<double>& porosity() const { return s_.eps; }
 
   // Reads the gas field into per-cell arrays (velocity, pressure gradient, ln eps); call after
   // every gas step and whenever the gas state is replaced.
@@ -71,7 +71,7 @@ class Coupler {
   void advance_drag(Particles& p, bool update, const std::vector<std::size_t>& split = {});
   // The same in two parts, for a caller that runs the particles' share inside its own parallel
   // region: count_step() once, then advance_drag_range() on every thread's particles.
-  void count_step() { ++accumulated_; }
+  void count_step() { ++s_.accumulated; }
   void advance_drag_range(Particles& p, bool update, std::size_t begin, std::size_t end);
 
   // F per cell (N/m^3): each particle's summed drag in its frozen cell, averaged over the steps
@@ -91,8 +91,8 @@ class Coupler {
   void restore(const CouplingState& in, std::size_t particles);
 
   // N, per particle: the drag of the next step (the last one set).
-  const std::vector<double>& drag_x() const { return drag_x_; }
-  const std::vector<double>& drag_y() const { return drag_y_; }
+  const std::vector<double>& drag_x() const { return s_.drag_x; }
+  const std::vector<double>& drag_y() const { return s_.drag_y; }
 
  private:
   GasGrid grid_;
@@ -113,17 +113,15 @@ class Coupler {
   BlockCellSums sums_;       // per-cell sums over particles, block by block: solid volume
   BlockCellSums drag_sums_;  // idem: drag
   std::vector<double> cell_ux_, cell_uy_, cell_gx_, cell_gy_, ln_eps_;  // per cell
-  std::vector<double> solid_, eps_;
-  // Per particle, frozen at the last gas step: the cell of its centre, the gas velocity there
-  // (m/s), the drag coefficient (kg/s) and the force that does not depend on the slip (N).
-  std::vector<int> cell_;
-  std::vector<double> gas_ux_, gas_uy_, beta_, base_fx_, base_fy_;
-  std::vector<double> drag_x_, drag_y_;  // N, per particle: the drag of the next step
-  std::vector<double> sum_x_, sum_y_;    // N, per particle: drags felt since the last gas step
+  std::vector<double> solid_;
+  // What a restart needs (see CouplingState): per cell eps; per particle, frozen at the last gas
+  // step, the cell of its centre, the gas velocity there (m/s), the drag coefficient (kg/s) and
+  // the force that does not depend on the slip (N); the drag of the next step and the drags felt
+  // since the last gas step (N); the steps counted since then.
+  CouplingState s_;
   // Scratch per particle for freeze_drag: slip (m/s), the cell's eps and ln eps.
   std::vector<double> slip_x_, slip_y_, slip_, eps_at_, ln_eps_at_;
   std::vector<double> cell_sum_x_, cell_sum_y_;  // N, per cell (take_interaction_force)
-  int accumulated_ = 0;
 };
 
 }  // namespace fluidbed

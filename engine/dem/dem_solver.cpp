@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <utility>
 
 
 #include "core/errors.hpp"
@@ -79,12 +80,8 @@ void DemSolver::fail(const std::string& what) const {
 template <bool Incremental>
 void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPartial& acc) {
   const Particles& P = state_.particles;
-  const double* x = P.x.data();
-  const double* y = P.y.data();
-  const double* vx = P.vx.data();
-  const double* vy = P.vy.data();
-  const double* w = P.w.data();
-  const double* r = P.radius.data();
+  const auto a = P.arrays();
+  const double *x = a.x, *y = a.y, *vx = a.vx, *vy = a.vy, *w = a.w, *r = a.radius;
   NeighbourList& L = list_;
   const std::int32_t* li = L.i.data();
   const std::int32_t* lj = L.j.data();
@@ -180,12 +177,8 @@ inline double keep_or_zero(double v, bool keep) {
 template <bool Incremental>
 void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPartial& acc) {
   Particles& P = state_.particles;
-  const double* x = P.x.data();
-  const double* y = P.y.data();
-  const double* vx = P.vx.data();
-  const double* vy = P.vy.data();
-  const double* w = P.w.data();
-  const double* r = P.radius.data();
+  const auto a = P.arrays();
+  const double *x = a.x, *y = a.y, *vx = a.vx, *vy = a.vy, *w = a.w, *r = a.radius;
   const NeighbourList& L = list_;
   const double* lfx = L.fx.data();
   const double* lfy = L.fy.data();
@@ -193,10 +186,7 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
   const double* lratio = L.ratio.data();
   const std::int32_t* gb = L.gather_begin.data();
   const std::int32_t* gl = L.gather.data();
-  double* fx = P.fx.data();
-  double* fy = P.fy.data();
-  double* tq = P.torque.data();
-  double* ov = overlap_.data();
+  double *fx = a.fx, *fy = a.fy, *tq = a.torque, *ov = overlap_.data();
   const double g = gravity_;
   for (std::size_t i = b; i < e; ++i) {
     double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
@@ -281,14 +271,9 @@ void DemSolver::before_forces(std::size_t b, std::size_t e) {
 // and each block's kinetic energy. Returns true when one of them has left the box.
 bool DemSolver::after_forces(std::size_t b, std::size_t e) {
   correct(integrator_, dt_, state_.particles, b, e);
-  const Particles& P = state_.particles;
-  const double* x = P.x.data();
-  const double* y = P.y.data();
-  const double* vx = P.vx.data();
-  const double* vy = P.vy.data();
-  const double* w = P.w.data();
-  const double* ii = P.inv_inertia.data();
-  const double* m = P.mass.data();
+  const auto a = std::as_const(state_.particles).arrays();
+  const double *x = a.x, *y = a.y, *vx = a.vx, *vy = a.vy, *w = a.w;
+  const double *ii = a.inv_inertia, *m = a.mass, *r = a.radius;
   for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk) {
     const std::size_t q1 = std::min(e, (blk + 1) * kParticleBlock);
     double ke = 0.0;
@@ -298,7 +283,6 @@ bool DemSolver::after_forces(std::size_t b, std::size_t e) {
   }
   // Every particle inside the box (with a radius of slack): branch-free; finish_step looks for
   // the culprit only when this fails.
-  const double* r = P.radius.data();
   bool outside = false;
   for (std::size_t i = b; i < e; ++i)
     outside |= !(x[i] >= -r[i] && x[i] <= width_ + r[i] && y[i] >= -r[i] && y[i] <= height_ + r[i]);

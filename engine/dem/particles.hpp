@@ -29,6 +29,24 @@ struct Particles {
 
   std::size_t size() const { return x.size(); }
 
+  // Raw pointers to the arrays, taken once before a hot loop (so that the compiler need not
+  // reload them from the vectors after every store).
+  template <class T>
+  struct Arrays {
+    T *x, *y, *vx, *vy, *w, *ax, *ay, *aw, *fx, *fy, *torque, *ext_fx, *ext_fy;
+    const double *radius, *mass, *inv_mass, *inv_inertia;
+  };
+  Arrays<double> arrays() {
+    return {x.data(), y.data(), vx.data(), vy.data(), w.data(), ax.data(), ay.data(),
+            aw.data(), fx.data(), fy.data(), torque.data(), ext_fx.data(), ext_fy.data(),
+            radius.data(), mass.data(), inv_mass.data(), inv_inertia.data()};
+  }
+  Arrays<const double> arrays() const {
+    return {x.data(), y.data(), vx.data(), vy.data(), w.data(), ax.data(), ay.data(),
+            aw.data(), fx.data(), fy.data(), torque.data(), ext_fx.data(), ext_fy.data(),
+            radius.data(), mass.data(), inv_mass.data(), inv_inertia.data()};
+  }
+
   void resize(std::size_t n) {
     for (auto* v : {&x, &y, &vx, &vy, &w, &ax, &ay, &aw, &fx, &fy, &torque, &ext_fx, &ext_fy,
                     &radius, &mass, &inv_mass, &inv_inertia})
