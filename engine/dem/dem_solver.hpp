@@ -29,7 +29,7 @@ struct DemParams {
   double gravity = 9.81;                       // m/s^2, along -y
   double width = 0.15, height = 0.9;           // m, the box the particles must stay in
   std::vector<Wall> walls;                     // the slab's planar walls (dem/walls.hpp)
-  double skin = 0.2;                           // neighbour-list skin, fraction of the largest diameter
+  double skin = 0.4;                           // neighbour-list skin, fraction of the largest diameter
   double overlap_limit = 0.2;                  // overlap ratio treated as a runaway
   bool frozen = false;                         // a fixed bed: nothing moves
   int threads = 1;                             // inside a step; 0: one per core

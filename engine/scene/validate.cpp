@@ -75,6 +75,7 @@ void validate(const Settings& s) {
   if (g.cells_y < 3) refuse("gas.cells_y", "must be at least 3");
   positive("gas.tolerance", g.tolerance);
   if (g.max_iterations < 1) refuse("gas.max_iterations", "must be at least 1");
+  non_negative("gas.preconditioner_refresh", g.preconditioner_refresh);
   if (g.enabled) {
     // Porosity counts each sphere in the cells it straddles; the exact split assumes a sphere
     // is cut by at most one grid line each way.

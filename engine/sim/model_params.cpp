@@ -46,6 +46,7 @@ GasParams gas_params_for(const Settings& s) {
   p.jets = s.inlet.jets;
   p.tolerance = s.gas.tolerance;
   p.max_iterations = s.gas.max_iterations;
+  p.preconditioner_refresh = s.gas.preconditioner_refresh;
   // The drag of the lower half of a bottom-row cell acts where the inflow velocity is fixed: it is
   // carried by the bottom wall's pressure, not moved onto the face above (which would bias the
   // bottom-row pressure gradient and the bed's pressure drop by 0.75 F dy / eps). The third-law
