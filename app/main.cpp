@@ -71,6 +71,9 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "measure speed (default scene: packing)");
   add_scene_options(bench, bench_args, false);
   bench->add_option("--out", bench_args.out, "folder for bench.json (default out/bench)");
+  bench->add_option("--repeat", bench_args.repeat,
+                    "the same run N times: median, min and max in bench.json (default 1)")
+      ->check(CLI::PositiveNumber);
   std::string bench_peer;  // bench --peer liggghts (app/cli/bench_peer.hpp)
   bench->add_option("--peer", bench_peer, "also run the same work in another code: liggghts");
 
@@ -101,6 +104,9 @@ int main(int argc, char** argv) {
   add_scene_options(view, view_args.run_like, false);
   add_output_options(view, view_args.output);
   view->add_option("--script", view_args.script, "drive the viewer from a file (README.md, \"Viewer\")");
+  view->add_option("--max-fps", view_args.max_fps,
+                   "the window draws at most this many frames per second (30; 0: no cap)")
+      ->check(CLI::NonNegativeNumber);
   view->add_option("--out", view_args.out, "folder for screenshots, recordings, headless frames (out/view)");
 
   auto* exporter = app.add_subcommand("export", "write the scene for another code (LIGGGHTS, OpenFOAM)");

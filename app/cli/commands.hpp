@@ -32,6 +32,7 @@ struct RunArgs {
   bool plots = false;   // run: dp.png, overlap.png, trajectory.png
   std::string track;    // run --plots: particle ids "12,345"; empty: two from the jet region
   bool bubbles = false; // run: the bubble analysis (bubbles.csv, mixing.csv, summary `bubbles`)
+  int repeat = 1;       // bench: runs of the same work (median, min and max reported)
 };
 
 struct SweepArgs {

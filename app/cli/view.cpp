@@ -151,6 +151,7 @@ int view_command(const ViewArgs& a) {
   vo.out_dir = out;
   vo.look = fo.look;
   vo.script = script;
+  vo.max_fps = a.max_fps;
   std::unique_ptr<Viewer> viewer;
   try {
     viewer = std::make_unique<Viewer>(engine, vo);

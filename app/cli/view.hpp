@@ -16,6 +16,7 @@ struct ViewArgs {
   std::string script;  // a view script (view/script.hpp); empty: interactive
   std::string out;     // screenshots, recordings, headless frames; empty: out/view
   OutputArgs output;   // the look (colour, arrows, ...); frame_size: the window
+  double max_fps = 30.0;  // the window's drawing rate at most (0: no cap)
   ViewArgs() { output.frame_size = "1360x800"; }
 };
 

@@ -257,7 +257,7 @@ void ViewEngine::publish() {
 
 void ViewEngine::stopped() {
   const std::uint64_t hash = model_.sim().state_hash();
-  sim_s_per_wall_s_ = steps_per_s_ = 0.0;
+  // The speed stays what it was while running: the panel shows it paused too.
   {
     std::lock_guard lock(status_mutex_);
     status_.state_hash = hash;

@@ -101,7 +101,15 @@ void Viewer::draw_panel() {
   ImGui::SameLine();
   if (ImGui::Button("Reset", ImVec2(70, 0))) post({ViewCommand::Kind::reset, 0.0});
   ImGui::Text("t = %.4f s   step %lld", st.time, static_cast<long long>(st.steps));
-  ImGui::Text("speed %.3g sim s / wall s, %.0f steps/s", st.sim_s_per_wall_s, st.steps_per_s);
+  ImGui::Text("speed %.3g sim s / wall s, %.0f steps/s%s", st.sim_s_per_wall_s, st.steps_per_s,
+              st.stepping ? "" : " (when last running)");
+  // In words a class understands: a simulated second shown in so many wall seconds.
+  if (st.sim_s_per_wall_s > 0.0 && st.sim_s_per_wall_s < 0.95)
+    ImGui::Text("slow motion x %.1f", 1.0 / st.sim_s_per_wall_s);
+  else if (st.sim_s_per_wall_s >= 0.95 && st.sim_s_per_wall_s <= 1.05)
+    ImGui::Text("real time");
+  else if (st.sim_s_per_wall_s > 1.05)
+    ImGui::Text("fast motion x %.1f", st.sim_s_per_wall_s);
   ImGui::Text("window %.1f frames/s", static_cast<double>(io.Framerate));
   if (!st.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", st.error.c_str());
 

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <thread>
 
 #include "core/errors.hpp"
 #include "render/image.hpp"
@@ -209,6 +210,11 @@ void Viewer::frame() {
   draw_seconds_ += seconds_between(t_start, Clock::now());
   context_->present();  // swaps and polls events
   ++stats_.frames;
+  if (opt_.max_fps > 0.0) {  // the rest of the frame's time goes to the engine
+    const auto next = t_start + std::chrono::duration_cast<Clock::duration>(
+                                    std::chrono::duration<double>(1.0 / opt_.max_fps));
+    std::this_thread::sleep_until(next);
+  }
 }
 
 void Viewer::draw_scene() {

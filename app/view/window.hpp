@@ -28,6 +28,10 @@ struct ViewerOptions {
   std::string out_dir;             // screenshots and recordings
   render::RenderSettings look;
   std::vector<ScriptLine> script;
+  // Frames per second the window draws at most (0: as fast as it can). The eye needs no more
+  // than about 30; every frame drawn beyond that takes a core from the engine (under Xvfb,
+  // llvmpipe drew 80 a second and the engine on two threads ran slower than on one).
+  double max_fps = 30.0;
 };
 
 // What the window measured, printed at the end (the viewer's benchmark).

@@ -1,7 +1,6 @@
 #include "dem/dem_solver.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -37,6 +36,7 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   state_.particles = std::move(particles);
   overlap_.assign(n, 0.0);
   wall_active_.assign(n, 0);
+  wall_ended_.assign(n, 0);
   state_.walls.resize(n, static_cast<int>(walls_.size()));
   // Newmark and Verlet carry the last acceleration; at rest with no contacts it is gravity.
   auto& p = state_.particles;
@@ -159,20 +159,11 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
   acc.max_ratio = std::max(acc.max_ratio, max_ratio);
 }
 
-namespace {
-
-// v where keep, else +0.0, by masking the bits (no branch; a multiply would give -0.0 or NaN).
-inline double keep_or_zero(double v, bool keep) {
-  const std::uint64_t mask = 0 - static_cast<std::uint64_t>(keep);
-  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) & mask);
-}
-
-}  // namespace
-
 // Pass 2 over particles [b, e): gravity, gas and the pair forces gathered in a fixed order
 // (entries where the particle is second, then first: one list), then each wall in turn. The
-// walls go as the pairs do: one sweep finds the particles touching the wall (branch-free) and
-// clears the history of those that do not, the next computes the contacts. Each particle's
+// walls go as the pairs do: one sweep finds the particles touching the wall and those that have
+// just left it (branch-free; the latter's history is then cleared), the next computes the
+// contacts. Each particle's
 // force is summed in the order: gathered pairs, then walls 0, 1, 2, (3).
 template <bool Incremental>
 void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPartial& acc) {
@@ -208,6 +199,7 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
   const int nw = static_cast<int>(walls_.size());
   const ContactParams params = params_;
   std::int32_t* on = wall_active_.data() + b;
+  std::int32_t* off = wall_ended_.data() + b;
   double max_wall_ratio = 0.0;
   int wall_contacts = 0, sliding = 0;
   for (int c = 0; c < nw; ++c) {
@@ -215,17 +207,22 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
     std::uint8_t* active = wh.active.data();
     double* hdn = wh.dn.data();
     double* hds = wh.ds.data();
-    std::size_t count = 0;
+    std::size_t count = 0, ended = 0;
     for (std::size_t i = b; i < e; ++i) {
       const std::size_t s = i * nw + c;
       const double d = wall.nx * x[i] + wall.ny * y[i] - wall.offset;
-      const bool touching = d < r[i];
-      const int fresh = touching & (active[s] ^ 1);
+      const int touching = d < r[i];
+      const int was = active[s];
+      const int fresh = touching & (was ^ 1);
       on[count] = static_cast<std::int32_t>(i) ^ -fresh;  // ~i: touching for the first time
       count += touching;
+      off[ended] = static_cast<std::int32_t>(i);  // contacts that have just ended
+      ended += was & (touching ^ 1);
       active[s] = static_cast<std::uint8_t>(touching);
-      hdn[s] = keep_or_zero(hdn[s], touching);  // apart: the history is cleared
-      hds[s] = keep_or_zero(hds[s], touching);
+    }
+    for (std::size_t q = 0; q < ended; ++q) {  // apart: the history is cleared
+      const std::size_t s = static_cast<std::size_t>(off[q]) * nw + c;
+      hdn[s] = hds[s] = 0.0;
     }
     const double nx = -wall.nx, ny = -wall.ny;  // from the particle into the wall
     const double tx = -ny, ty = nx;

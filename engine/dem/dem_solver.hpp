@@ -138,7 +138,8 @@ class DemSolver {
   bool parallel_ = false;  // threads_ > 1 and enough particles to pay for a fork
   StepDiagnostics diag_;
   std::vector<double> overlap_;
-  std::vector<std::int32_t> wall_active_;  // scratch of the wall sweeps: particles touching a wall
+  // Scratch of the wall sweeps: the particles touching a wall, those that have just left it.
+  std::vector<std::int32_t> wall_active_, wall_ended_;
   mutable PhaseTimes times_;
   std::vector<StepPartial> partial_;  // per thread
   std::vector<double> block_ke_;      // J, per block of particles (core/threads.hpp)
