@@ -5,6 +5,8 @@
 
 #include "../test_support.hpp"
 #include "scene/scene_loader.hpp"
+#include "analysis/spectrum.hpp"
+#include "run/bubble_recorder.hpp"
 #include "run/run.hpp"
 #include "sim/model_params.hpp"
 #include "sim/simulation.hpp"
@@ -23,11 +25,15 @@ TEST(PaperBed, JetBedBubblesAroundItsWeight) {
   double cavity = 0.0;
   const auto& eps = sim.coupler()->porosity();
   std::vector<TimeseriesRow> rows;
+  // The bubble analysis at its default interval, 10 ms: once per chunk.
+  BubbleRecorder bubbles(sim);
+  bubbles.analyse(sim);
   for (int k = 1; k <= 300; ++k) {  // 3 s in chunks of 10 ms, looking at the cavity after each
     RunOptions chunk;
     chunk.until = 0.01 * k;
     const RunResult part = run_simulation(sim, chunk);
     rows.insert(rows.end(), part.rows.begin(), part.rows.end());
+    bubbles.analyse(sim);
     for (int j = 0; j < grid.ny; ++j) {
       const double y = (j + 0.5) * grid.dy();
       if (y < 0.02 || y > 0.16) continue;
@@ -67,4 +73,26 @@ TEST(PaperBed, JetBedBubblesAroundItsWeight) {
   EXPECT_LT(p99, 0.01);
   EXPECT_LT(worst, 0.02);
   EXPECT_GT(cavity, 0.8);
+
+  // Bubbles are found and tracked, and they erupt at the surface about as often as dp swings
+  // (the dominant frequency of its Welch spectrum after start-up): within 25 %.
+  const nlohmann::json b = bubbles.bubbles_summary(1.0);
+  std::vector<double> dp_after;
+  for (const auto& row : rows)
+    if (row.t > 1.0) dp_after.push_back(row.dp);
+  const PowerSpectrum sp = welch_spectrum(dp_after, rows[1].t - rows[0].t);
+  const double f_dp = sp.dominant_frequency_refined;
+  const double eruptions = b["eruptions_per_s"].get<double>();
+  std::printf("bubbles (1-3 s): %d formed (%.1f per s), mean D_e %.1f mm, mean rise velocity %.3f "
+              "m/s (2D relation 0.5 sqrt(g D_e): %.3f m/s), eruptions %.2f per s against the "
+              "dominant dp frequency %.2f Hz (%+.0f %%), slugging fraction %.2f, regime %s\n",
+              b["formed"].get<int>(), b["formed_per_s"].get<double>(),
+              1e3 * b["mean_d_eq_m"].get<double>(), b["mean_rise_velocity_m_s"].get<double>(),
+              b["mean_rise_velocity_2d_ref_m_s"].get<double>(), eruptions, f_dp,
+              100.0 * (eruptions / f_dp - 1.0), b["slugging_fraction"].get<double>(),
+              b["regime"].get<std::string>().c_str());
+  EXPECT_GT(b["formed"].get<int>(), 10);
+  EXPECT_GT(b["velocity_samples"].get<int>(), 50);
+  EXPECT_GT(b["mean_d_eq_m"].get<double>(), 2.0 * s.particles.diameter);
+  EXPECT_NEAR(eruptions, f_dp, 0.25 * f_dp);
 }
