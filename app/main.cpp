@@ -37,6 +37,8 @@ void add_output_options(CLI::App* cmd, fluidbed::app::OutputArgs& o) {
   cmd->add_flag("--gas-arrow-colour", o.gas_arrow_colour, "colour gas arrows by speed");
   cmd->add_flag("--particle-arrows", o.particle_arrows, "particle velocity arrows");
   cmd->add_flag("--porosity-background", o.porosity_background, "porosity field behind particles");
+  cmd->add_flag("--bubble-outlines", o.bubble_outlines,
+                "frames and montage: outlines of the bubbles and jet cavities found ([bubbles])");
   cmd->add_flag("--dark", o.dark, "dark background");
   cmd->add_option("--close-up", o.close_up,
                   "frames: beside the bed, its lower FRACTION magnified (0.4; 0: none)");

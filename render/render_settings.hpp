@@ -18,6 +18,7 @@ struct RenderSettings {
   bool particle_arrows = false;              // particle velocity at centres (Fig. 14a)
   double particle_arrow_reference = 1.0;     // m/s drawn three particle diameters long
   bool porosity_background = false;          // the gas cells' porosity behind the particles
+  bool bubble_outlines = false;              // the outlines the snapshot carries (bubble_edges)
   double close_up = 0.4;                     // frames: a magnified panel of the bed's lower
                                              // fraction of its height beside it (0: none)
   bool dark_background = false;

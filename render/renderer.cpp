@@ -40,6 +40,7 @@ struct Theme {
   Rgba page, bed, wall, text, faint, jet;
   Rgb gas_arrow, particle_arrow;
   Rgb porous_dense, porous_void;  // porosity 0.35 and 1
+  Rgba bubble{0.90f, 0.16f, 0.10f, 1};  // bubble outlines
 };
 
 Theme theme(bool dark) {
@@ -286,6 +287,20 @@ struct Renderer::Impl {
                                     scale_position(scale, particle_value(rs.colour_by, s, i)));
       discs.push_back({bed.px(s.x[i]), bed.py(s.y[i]),
                        std::max(0.7f, f(s.radius[i] * bed.scale)), c.r, c.g, c.b});
+    }
+
+    // Bubble and jet-cavity outlines (the fine cells' edges the snapshot carries), over the
+    // particles.
+    if (rs.bubble_outlines) {
+      const float t = std::max(1.0f, 0.3f * l.wall);
+      const auto& e = s.bubble_edges;
+      for (std::size_t k = 0; k + 3 < e.size(); k += 4) {
+        const float x0 = bed.px(e[k]), y0 = bed.py(e[k + 1]), x1 = bed.px(e[k + 2]),
+                    y1 = bed.py(e[k + 3]);
+        rect(over, {std::min(x0, x1) - 0.5f * t, std::min(y0, y1) - 0.5f * t,
+                    std::max(x0, x1) + 0.5f * t, std::max(y0, y1) + 0.5f * t},
+             th.bubble);
+      }
     }
 
     const float shaft = std::max(0.5f, 0.55f * l.wall / 2.0f + 0.1f);

@@ -17,6 +17,7 @@ struct OutputArgs {
   std::string colour_range;             // "MIN,MAX" in the quantity's unit; empty: its default
   bool gas_arrows = true, gas_arrow_colour = false, particle_arrows = false;
   bool porosity_background = false, dark = false;
+  bool bubble_outlines = false;         // the bubble analysis' outlines over the particles
   double close_up = 0.4;                // frames: magnified lower fraction of the bed (0: none)
   double video_fps = 25.0;
   std::string gl_backend = "osmesa";

@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "io/vtk_writer.hpp"
+#include "run/bubble_recorder.hpp"
 #include "render/gl_context.hpp"
 #include "render/image.hpp"
 #include "render/renderer.hpp"
@@ -41,6 +42,9 @@ FrameOutput::FrameOutput(std::string out_dir, FrameOptions options, const Simula
     throw InputError("--video needs an even frame width and height (got " +
                      std::to_string(opt_.width) + "x" + std::to_string(opt_.height) + ")");
   if (opt_.queue < 1) opt_.queue = 1;
+  if (opt_.vtk || opt_.look.bubble_outlines)
+    bubbles_ = std::make_unique<BubbleAnalysis>(bubble_settings_for(sim.settings()),
+                                                bubble_geometry_for(sim.settings()));
   opt_.look.time_decimals = time_decimals(opt_.interval);
 
   // Output times are steps: the nearest step to each time (within dt / 2), the same rounding the
@@ -110,6 +114,17 @@ void FrameOutput::observe(const Simulation& sim) {
   const auto t0 = Clock::now();
   std::shared_ptr<Snapshot> snap = channel_.acquire();
   take_snapshot(sim, *snap);
+  if (bubbles_) {  // the fine void fraction and the outlines, on the engine thread (about 2 ms)
+    const BubbleFrame& f = bubbles_->analyse(sim.time(), sim.dem().particles());
+    const VoidFractionField& v = bubbles_->void_fraction();
+    snap->void_nx = v.grid.nx;
+    snap->void_ny = v.grid.ny;
+    snap->void_dx = v.grid.dx;
+    snap->void_dy = v.grid.dy;
+    snap->void_fraction.assign(v.eps.begin(), v.eps.end());
+    snap->bubble_edges.clear();
+    outline_edges(f, v.grid, snap->bubble_edges);
+  }
   channel_.publish(snap);  // the newest state, for any live reader
   stats_.snapshot_s += seconds_since(t0);
   push({std::move(snap), due.frame, due.montage,
@@ -289,6 +304,7 @@ FrameOptions frame_options(const OutputArgs& a, const std::string& assets) {
   o.look.gas_arrows_coloured = a.gas_arrow_colour;
   o.look.particle_arrows = a.particle_arrows;
   o.look.porosity_background = a.porosity_background;
+  o.look.bubble_outlines = a.bubble_outlines;
   o.look.dark_background = a.dark;
   if (!(a.close_up >= 0.0 && a.close_up < 1.0))
     throw InputError("--close-up expects a fraction of the bed's height in [0, 1), got " +

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "analysis/bubbles.hpp"
 #include "cli/commands.hpp"
 #include "render/render_settings.hpp"
 #include "sim/simulation.hpp"
@@ -93,6 +94,8 @@ class FrameOutput {
   std::exception_ptr error_;
   FrameStats stats_;
   std::thread worker_;
+  // The fine void fraction and the bubble outlines for the snapshots (VTK, --bubble-outlines).
+  std::unique_ptr<BubbleAnalysis> bubbles_;
 };
 
 // The options of `run` as FrameOptions (font from `assets`); InputError names a bad value.

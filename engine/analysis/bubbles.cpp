@@ -864,4 +864,27 @@ void BubbleAnalysis::load(std::istream& in_stream, const std::string& origin) {
   history_.load(in_stream, origin);
 }
 
+void outline_edges(const BubbleFrame& frame, const FineGrid& grid, std::vector<float>& xy) {
+  const int nx = grid.nx, ny = grid.ny;
+  if (frame.label.size() != static_cast<std::size_t>(grid.cells())) return;
+  auto label = [&](int i, int j) {
+    return i < 0 || j < 0 || i >= nx || j >= ny ? kCellDense : frame.label[grid.index(i, j)];
+  };
+  auto edge = [&](double x0, double y0, double x1, double y1) {
+    xy.insert(xy.end(), {static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(x1),
+                         static_cast<float>(y1)});
+  };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int l = label(i, j);
+      if (l < 0) continue;
+      const double x0 = i * grid.dx, x1 = (i + 1) * grid.dx;
+      const double y0 = j * grid.dy, y1 = (j + 1) * grid.dy;
+      if (label(i - 1, j) != l) edge(x0, y0, x0, y1);
+      if (label(i + 1, j) != l) edge(x1, y0, x1, y1);
+      if (label(i, j - 1) != l) edge(x0, y0, x1, y0);
+      if (label(i, j + 1) != l) edge(x0, y1, x1, y1);
+    }
+}
+
 }  // namespace fluidbed

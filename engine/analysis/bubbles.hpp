@@ -322,6 +322,10 @@ void append_rows(const BubbleFrame& frame, std::vector<BubbleRow>& rows);
 void write_bubbles_csv_header(std::ostream& out);
 void write_bubbles_csv_rows(std::ostream& out, const std::vector<BubbleRow>& rows);
 
+// The outlines of a frame's regions (bubbles and jet cavities): every fine-cell edge between a
+// region's cell and a cell outside it, appended to `xy` as x0 y0 x1 y1 (m).
+void outline_edges(const BubbleFrame& frame, const FineGrid& grid, std::vector<float>& xy);
+
 // Everything per frame, for the run loop: void fraction, detection, tracking and the per-frame
 // summaries. Call analyse() once per interval with increasing t.
 class BubbleAnalysis {

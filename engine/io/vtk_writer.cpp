@@ -157,6 +157,28 @@ void write_gas_vti(const std::string& path, const Snapshot& s) {
   write_file_atomically(path, [&](std::ostream& out) { out << o.str(); });
 }
 
+void write_void_vti(const std::string& path, const Snapshot& s) {
+  if (s.void_fraction.empty()) return;
+  const std::string extent =
+      "0 " + std::to_string(s.void_nx) + " 0 " + std::to_string(s.void_ny) + " 0 1";
+  std::ostringstream o;
+  o << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+       "header_type=\"UInt32\">\n"
+    << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"0 0 0\" Spacing=\""
+    << number(s.void_dx) << " " << number(s.void_dy) << " " << number(s.thickness) << "\">\n";
+  time_field(o, s.time);
+  o << "    <Piece Extent=\"" << extent << "\">\n"
+    << "      <CellData Scalars=\"void_fraction\">\n";
+  const std::vector<double> eps(s.void_fraction.begin(), s.void_fraction.end());
+  floats(o, "void_fraction", 1, eps, "        ");
+  o << "      </CellData>\n"
+    << "    </Piece>\n"
+    << "  </ImageData>\n"
+    << "</VTKFile>\n";
+  write_file_atomically(path, [&](std::ostream& out) { out << o.str(); });
+}
+
 VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
@@ -170,9 +192,13 @@ void VtkSeries::write(const Snapshot& s) {
   write_particles_vtp((d / ("particles_" + std::string(name) + ".vtp")).string(), s);
   gas_ = gas_ || s.has_gas();
   if (s.has_gas()) write_gas_vti((d / ("gas_" + std::string(name) + ".vti")).string(), s);
+  void_ = void_ || !s.void_fraction.empty();
+  if (!s.void_fraction.empty())
+    write_void_vti((d / ("void_" + std::string(name) + ".vti")).string(), s);
   times_.push_back(s.time);
   write_collection("particles", "vtp");
   if (gas_) write_collection("gas", "vti");
+  if (void_) write_collection("void", "vti");
 }
 
 void VtkSeries::write_collection(const std::string& name, const std::string& ext) const {

@@ -15,9 +15,12 @@ namespace fluidbed {
 void write_particles_vtp(const std::string& path, const Snapshot& s);
 // Nothing is written for a snapshot without gas.
 void write_gas_vti(const std::string& path, const Snapshot& s);
+// The bubble analysis' fine void fraction (nothing for a snapshot without it).
+void write_void_vti(const std::string& path, const Snapshot& s);
 
-// A time series in a folder: particles_NNNNNN.vtp and gas_NNNNNN.vti per snapshot, and
-// particles.pvd and gas.pvd listing them with their times. The collections are rewritten after
+// A time series in a folder: particles_NNNNNN.vtp, gas_NNNNNN.vti and void_NNNNNN.vti (the fine
+// void fraction) per snapshot, and particles.pvd, gas.pvd and void.pvd listing them with their
+// times. The collections are rewritten after
 // every snapshot (each complete or absent), so a run stopped half-way leaves a readable series.
 class VtkSeries {
  public:
@@ -29,7 +32,7 @@ class VtkSeries {
   void write_collection(const std::string& name, const std::string& ext) const;
   std::string dir_;
   std::vector<double> times_;
-  bool gas_ = false;
+  bool gas_ = false, void_ = false;
 };
 
 }  // namespace fluidbed

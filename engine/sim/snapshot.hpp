@@ -42,6 +42,14 @@ struct Snapshot {
   std::vector<double> gas_ux, gas_uy;   // m/s, interstitial velocity at cell centres
   std::vector<double> porosity;         // -
   std::vector<double> pressure;         // Pa
+  // The bubble analysis' fine grid, when the snapshot's taker computed it (frames with
+  // --bubble-outlines, VTK files): void fraction per cell (c = j * void_nx + i, cells of
+  // void_dx x void_dy), and the outlines of the bubbles and jet cavities found in it, as
+  // segments x0 y0 x1 y1 (m), four values each.
+  int void_nx = 0, void_ny = 0;
+  double void_dx = 0.0, void_dy = 0.0;  // m
+  std::vector<float> void_fraction;
+  std::vector<float> bubble_edges;
 
   std::size_t particles() const { return x.size(); }
   bool has_gas() const { return nx > 0; }

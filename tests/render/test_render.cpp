@@ -291,6 +291,28 @@ TEST_F(Render, PorosityBackgroundDarkerWhereDense) {
   EXPECT_TRUE(is_background(at(draw(s, rs), bed.px(0.01), bed.py(0.01))));
 }
 
+// Bubble outlines: the edges the snapshot carries are drawn in red where the toggle is on, and
+// nothing of them where it is off.
+TEST_F(Render, BubbleOutlinesDrawnWhereTheSnapshotsEdgesAre) {
+  Snapshot s = empty_box();
+  // A square outline 20 mm wide around (0.05, 0.05).
+  s.bubble_edges = {0.04f, 0.04f, 0.06f, 0.04f, 0.06f, 0.04f, 0.06f, 0.06f,
+                    0.06f, 0.06f, 0.04f, 0.06f, 0.04f, 0.06f, 0.04f, 0.04f};
+  RenderSettings rs = plain();
+  rs.gas_arrows = false;
+  rs.bubble_outlines = true;
+  const Image on = draw(s, rs);
+  const BedView bed = frame_layout(s, kW, kH).beds.front();
+  for (const auto& [x, y] : {std::pair{0.05, 0.04}, {0.06, 0.05}, {0.05, 0.06}, {0.04, 0.05}}) {
+    const Rgb8 c = at(on, bed.px(x), bed.py(y));
+    EXPECT_GT(c.r, c.g + 100) << x << ", " << y;
+    EXPECT_GT(c.r, c.b + 100) << x << ", " << y;
+  }
+  EXPECT_TRUE(is_background(at(on, bed.px(0.05), bed.py(0.05))));  // inside: not filled
+  rs.bubble_outlines = false;
+  EXPECT_TRUE(is_background(at(draw(s, rs), bed.px(0.05), bed.py(0.04))));
+}
+
 // A montage: each snapshot in its own panel, at the place montage_layout gives.
 TEST_F(Render, MontagePutsEachSnapshotInItsPanel) {
   std::vector<Snapshot> snaps;

@@ -1,7 +1,8 @@
-// `fluidbed run --frames --video --vtk --montage` on a short coupled run (300 particles, 0.02 s):
-// the files exist in the right number and size, the video decodes (ffprobe) with the right frame
-// count, the VTK series reads back (a small reader of the format here, and VTK's own readers when
-// Debian's python3-vtk9 is installed), and frame output leaves summary.json's numbers unchanged.
+// `fluidbed run --frames --video --vtk --montage --bubble-outlines` on a short coupled run (300
+// particles, 0.02 s): the files exist in the right number and size, the video decodes (ffprobe)
+// with the right frame count, the VTK series (particles, gas, the fine void fraction) reads back
+// (a small reader of the format here, and VTK's own readers when Debian's python3-vtk9 is
+// installed), and frame output leaves summary.json's numbers unchanged.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,7 +38,7 @@ class RunOutputs : public ::testing::Test {
     root_ = temp_dir("run-outputs");
     with_ = run_fluidbed(short_run(root_ / "with") +
                              " --frames --video --vtk --montage 0.01,0.02 --frame-interval 0.005"
-                             " --frame-size 320x240 --colour force",
+                             " --frame-size 320x240 --colour force --bubble-outlines",
                          "outputs-with");
     without_ = run_fluidbed(short_run(root_ / "without"), "outputs-without");
   }
@@ -257,13 +258,32 @@ TEST_F(RunOutputs, VtkSeriesReadsBack) {
       EXPECT_LE(eps, 1.0 + 1e-6);
     }
   }
+  // The bubble analysis' fine void fraction beside them: a 2 mm grid over the bed, values in
+  // [0, 1], holding the spheres' volume (each sphere's volume shared among the cells it covers).
+  const auto voids = read_collection(vtk / "void.pvd");
+  ASSERT_EQ(voids.size(), static_cast<std::size_t>(kFrames));
+  for (int k = 0; k < kFrames; ++k) {
+    EXPECT_EQ(voids[static_cast<std::size_t>(k)].first, particles[static_cast<std::size_t>(k)].first);
+    const auto v = read_arrays(vtk / voids[static_cast<std::size_t>(k)].second);
+    const auto& eps = v.at("void_fraction").values;
+    ASSERT_EQ(eps.size(), 75u * 450u);
+    double solid = 0.0;
+    for (double e : eps) {
+      EXPECT_GE(e, -1e-6);
+      EXPECT_LE(e, 1.0 + 1e-6);
+      solid += (1.0 - e) * 0.002 * 0.002 * 0.004;
+    }
+    const double spheres = n * 4.0 / 3.0 * M_PI * 0.002 * 0.002 * 0.002;
+    EXPECT_NEAR(solid, spheres, 1e-3 * spheres);
+  }
   // ParaView's readers (VTK's own) open every file of the series: counts and names agree.
   if (std::system("/usr/bin/python3 -c 'import vtk' 2>/dev/null") != 0)
     GTEST_SKIP() << "python3-vtk9 is not installed (scripts/install-deps.sh installs it)";
   const std::string script = R"PY(
 import sys, re, vtk
 d = sys.argv[1]
-for kind, reader in (("particles", vtk.vtkXMLPolyDataReader), ("gas", vtk.vtkXMLImageDataReader)):
+for kind, reader in (("particles", vtk.vtkXMLPolyDataReader), ("gas", vtk.vtkXMLImageDataReader),
+                     ("void", vtk.vtkXMLImageDataReader)):
     text = open(f"{d}/{kind}.pvd").read()
     for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text):
         r = reader(); r.SetFileName(f"{d}/{f}"); r.Update(); o = r.GetOutput()
@@ -283,13 +303,17 @@ for kind, reader in (("particles", vtk.vtkXMLPolyDataReader), ("gas", vtk.vtkXML
     if (kind == "particles") {
       EXPECT_EQ(count, n);
       EXPECT_EQ(names, "force,id,initial_height,overlap,radius,spin,torque,velocity");
-    } else {
+    } else if (kind == "gas") {
       EXPECT_EQ(count, 15 * 45);
       EXPECT_EQ(names, "porosity,pressure,velocity");
+    } else {
+      EXPECT_EQ(kind, "void");
+      EXPECT_EQ(count, 75 * 450);
+      EXPECT_EQ(names, "void_fraction");
     }
     EXPECT_DOUBLE_EQ(std::stod(t), std::stod(time));
   }
-  EXPECT_EQ(seen, 2 * kFrames) << out;
+  EXPECT_EQ(seen, 3 * kFrames) << out;
 }
 
 TEST(RunOutputOptions, BadValuesAreRefusedInOneLine) {

@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -164,6 +165,47 @@ TEST(BubbleDetection, HolesOfKnownDiameterAreFoundWithTheirSize) {
       EXPECT_NEAR(g.regions[0].d_eq, expected, 0.05 * expected) << "radius " << r << " k " << k;
     }
   }
+}
+
+// The outlines drawn over frames: every edge separates one of the region's cells from a cell
+// outside it, each cell of the region contributes its outside sides, and the edges close (every
+// corner is met an even number of times).
+TEST(BubbleDetection, OutlineIsTheClosedBoundaryOfTheRegionsCells) {
+  BubbleAnalysis a({}, {});
+  const BubbleFrame& f = a.analyse(0.01, hex_bed(kWidth, kTop, {{0.07, 0.08, 0.012}}));
+  ASSERT_EQ(f.regions.size(), 1u);
+  const fluidbed::FineGrid& g = a.void_fraction().grid;
+  std::vector<float> xy;
+  fluidbed::outline_edges(f, g, xy);
+  ASSERT_EQ(xy.size() % 4, 0u);
+  int outside_sides = 0;
+  auto in = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < g.nx && j < g.ny && f.label[g.index(i, j)] == 0;
+  };
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      if (in(i, j))
+        outside_sides += !in(i - 1, j) + !in(i + 1, j) + !in(i, j - 1) + !in(i, j + 1);
+  EXPECT_EQ(static_cast<int>(xy.size() / 4), outside_sides);
+  EXPECT_GT(outside_sides, 8);
+  std::map<std::pair<long, long>, int> corners;
+  auto key = [&](float x, float y) {
+    return std::make_pair(std::lround(x / g.dx), std::lround(y / g.dy));
+  };
+  for (std::size_t k = 0; k < xy.size(); k += 4) {
+    const float x0 = xy[k], y0 = xy[k + 1], x1 = xy[k + 2], y1 = xy[k + 3];
+    EXPECT_NEAR(std::hypot(x1 - x0, y1 - y0), x0 == x1 ? g.dy : g.dx, 1e-6);
+    ++corners[key(x0, y0)];
+    ++corners[key(x1, y1)];
+    // The edge lies within the hole's extent (radius plus a window).
+    EXPECT_LT(std::hypot(0.5 * (x0 + x1) - 0.07, 0.5 * (y0 + y1) - 0.08), 0.012 + 0.01);
+  }
+  for (const auto& [c, n] : corners) EXPECT_EQ(n % 2, 0) << c.first << "," << c.second;
+  // A packed bed has nothing to outline.
+  const BubbleFrame& none = a.analyse(0.02, hex_bed(kWidth, kTop));
+  xy.clear();
+  fluidbed::outline_edges(none, g, xy);
+  EXPECT_TRUE(xy.empty());
 }
 
 TEST(BubbleDetection, TouchingHolesAreOneBubbleSeparateHolesTwo) {
