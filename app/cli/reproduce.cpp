@@ -38,6 +38,7 @@ TrackedRun run_tracked(Settings s, double until,
   TrajectoryRecorder recorder(nearest_particles(sim.dem().particles(), track_at), 0.005, s.time.dt);
   RunOptions opt;
   opt.until = until;
+  opt.bubbles = true;  // bubbles.csv, mixing.csv and their figures beside every run
   opt.on_step = [&](const Simulation& m) { recorder.observe(m); };
   const auto start = std::chrono::steady_clock::now();
   out.result = run_simulation(sim, opt);
@@ -46,7 +47,10 @@ TrackedRun run_tracked(Settings s, double until,
   return out;
 }
 
+// One number into its printf format; "n/a" for a value the run could not measure (no bubble
+// tracked, no spectrum).
 std::string fmt(const char* f, double v) {
+  if (!std::isfinite(v)) return "n/a";
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   return b;
@@ -54,6 +58,39 @@ std::string fmt(const char* f, double v) {
 
 double num(const nlohmann::json& j, const char* key) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+double num(const nlohmann::json& j, const char* object, const char* key) {
+  return j.contains(object) ? num(j[object], key) : NAN;
+}
+
+std::string text(const nlohmann::json& j, const char* object, const char* key) {
+  return j.contains(object) && j[object].contains(key) && j[object][key].is_string()
+             ? j[object][key].get<std::string>()
+             : "n/a";
+}
+
+// The report's bubble rows of one run (the bubble analysis of model.md section 6).
+void bubble_rows(std::ostringstream& md, const char* run, const nlohmann::json& j) {
+  const double d = num(j, "bubbles", "mean_d_eq_m");
+  const double rise = num(j, "bubbles", "mean_rise_velocity_m_s");
+  const double ref = num(j, "bubbles", "mean_rise_velocity_2d_ref_m_s");
+  const double erupt = num(j, "bubbles", "eruptions_per_s");
+  const double f = num(j, "dp_spectrum", "dominant_frequency_hz");
+  md << "| " << run << ": regime (Figs 9-11: bubbling, then slugging) | slugging | "
+     << text(j, "bubbles", "regime") << fmt(" (slug in %.0f %% of frames", 100.0 * num(j, "bubbles", "slugging_fraction"))
+     << fmt(", jet reaching the surface in %.0f %%)", 100.0 * num(j, "bubbles", "spouting_fraction"))
+     << " | |\n";
+  md << "| " << run << ": bubbles formed, eruptions at the surface | | "
+     << fmt("%.2f formed per s, ", num(j, "bubbles", "formed_per_s"))
+     << fmt("%.2f eruptions per s", erupt) << " | |\n";
+  md << "| " << run << ": eruptions against the dominant frequency of dp (Welch) | equal for one "
+     << "bubble per cycle | " << fmt("%.2f per s against ", erupt) << fmt("%.2f Hz", f) << " | "
+     << fmt("%+.0f %%", 100.0 * (erupt / f - 1.0)) << " |\n";
+  md << "| " << run << ": mean rise velocity against 0.5 sqrt(g D_e) (2D, Pyle and Harrison) "
+     << "| reference, not a fit | " << fmt("%.3f m/s", rise) << fmt(" at D_e %.1f mm", 1e3 * d)
+     << fmt(" (reference %.3f m/s)", ref) << " | " << fmt("%+.0f %%", 100.0 * (rise / ref - 1.0))
+     << " |\n";
 }
 
 }  // namespace
@@ -70,6 +107,7 @@ int reproduce_command(const ReproduceArgs& a) {
   // Lengths: the full report, or a quick pass that shows every figure at lower fidelity.
   const double paper_time = a.quick ? 1.5 : 6.0;
   const double ideal_time = a.quick ? 1.5 : 4.0;
+  const double uniform_time = a.quick ? 1.0 : 3.0;
   SweepOptions so;
   so.run_time = a.quick ? 0.5 : 1.5;
   so.averaging_start = a.quick ? 0.2 : 0.5;
@@ -88,6 +126,18 @@ int reproduce_command(const ReproduceArgs& a) {
   const fs::path paper_dir = fs::path(out) / "paper_bed";
   write_run_outputs(paper_dir.string(), pr.result);
   plot_run(paper_dir.string(), pr.result, pr.tracks, paper.domain.width, paper.domain.height, true);
+
+  // 1b. The same bed fed over its whole bottom (a uniform distributor): the like-with-like check of
+  // dp against the bed weight (model.md 2.1: the jetted bed's dead zones rest on the floor).
+  log("== the paper's bed at U = 2.8 m/s through a uniform distributor");
+  Settings uniform = load_scene(scenes + "xu_yu_1997.toml", a.overrides);
+  uniform.threads = a.threads;
+  uniform.inlet.kind = InletKind::Uniform;
+  uniform.diagnostics.averaging_start = averaging;
+  const TrackedRun ur = run_tracked(uniform, uniform_time, {});
+  const fs::path uniform_dir = fs::path(out) / "uniform";
+  write_run_outputs(uniform_dir.string(), ur.result);
+  plot_run(uniform_dir.string(), ur.result, {}, uniform.domain.width, uniform.domain.height, true);
 
   // 2. The ideal case (Figs 16-17).
   log("== the ideal case (eta = 0, gamma = 0)");
@@ -138,9 +188,16 @@ int reproduce_command(const ReproduceArgs& a) {
   md << "| plateau of the decreasing branch / bed weight per area | about 1 | "
      << fmt("%.0f Pa / ", sr.umf.plateau) << fmt("%.0f Pa", sr.bed_weight_per_area) << " | "
      << fmt("%+.0f %%", 100.0 * (sr.umf.plateau / sr.bed_weight_per_area - 1.0)) << " |\n";
-  md << "| mean dp at 2.8 m/s after start-up (eq 30, Fig. 8) | about the bed weight | "
-     << fmt("%.0f Pa", dp_mean) << fmt(" (weight %.0f Pa)", weight) << " | "
-     << fmt("%+.0f %%", 100.0 * (dp_mean / weight - 1.0)) << " |\n";
+  const auto& uj = ur.result.summary;
+  const double dp_uniform = num(uj, "dp_mean_pa");
+  md << "| mean dp at 2.8 m/s, uniform distributor (model A: the bed carries its weight) | "
+     << "1.005 of W/A (measured, model.md 2.1) | " << fmt("%.0f Pa", dp_uniform)
+     << fmt(" (weight %.0f Pa)", weight) << " | " << fmt("%+.0f %%", 100.0 * (dp_uniform / weight - 1.0))
+     << " |\n";
+  md << "| mean dp at 2.8 m/s, central jet (eq 30, Fig. 8; dead zones rest on the floor) | "
+     << "below W/A (DPMFoam 0.77) | " << fmt("%.0f Pa", dp_mean)
+     << fmt(" = %.3f of W/A", dp_mean / weight) << " | "
+     << fmt("%.3f of the uniform bed's", dp_mean / dp_uniform) << " |\n";
   md << "| start-up peak of dp (Fig. 8) | far above the stable level | "
      << fmt("%.0f Pa", num(pj, "dp_max_pa")) << fmt(" at t = %.3f s", num(pj, "dp_max_time_s"))
      << " | " << fmt("%.1f x the mean", num(pj, "dp_max_pa") / dp_mean) << " |\n";
@@ -154,6 +211,9 @@ int reproduce_command(const ReproduceArgs& a) {
   md << "| realistic bed: dominant period of dp | irregular | "
      << fmt("%.3f s", num(pj, "dp_dominant_period_s"))
      << fmt(" (cycle-length spread %.0f %%)", 100.0 * num(pj, "dp_cycle_length_cv")) << " | |\n";
+  bubble_rows(md, "jetted bed", pj);
+  bubble_rows(md, "uniform distributor", uj);
+  bubble_rows(md, "ideal case", ij);
   md << "| cost of 1 s of the paper's bed | 9 h CPU (HP-735) | "
      << fmt("%.0f s wall", wall_per_sim)
      << " (" << resolve_threads(paper.threads) << (resolve_threads(paper.threads) == 1 ? " thread)" : " threads)")
@@ -165,6 +225,13 @@ int reproduce_command(const ReproduceArgs& a) {
   md << "Fig. 15, max overlap ratio: ![overlap](paper_bed/overlap.png)\n\n";
   md << "Figs 12-13, particles from the jet region: ![trajectory](paper_bed/trajectory.png)\n\n";
   md << "Fig. 17, the ideal case's dp: ![ideal](ideal/dp.png)\n\n";
+  md << "Bubbles of the jetted bed (size against height, rise velocity against size with "
+     << "0.5 sqrt(g D_e)): ![bubbles](paper_bed/bubbles.png)\n\n";
+  md << "Its dp spectrum (Welch): ![spectrum](paper_bed/dp_spectrum.png); the Lacey mixing "
+     << "index of the two halves by initial height: ![mixing](paper_bed/mixing.png)\n\n";
+  md << "The same bed through a uniform distributor: ![uniform dp](uniform/dp.png) "
+     << "![uniform bubbles](uniform/bubbles.png)\n\n";
+  md << "The ideal case's bubbles: ![ideal bubbles](ideal/bubbles.png)\n\n";
   md << "## Studies: speed against accuracy, stability, model choices\n\n";
   md << "Each study below is `fluidbed study NAME" << (a.quick ? " --size tiny" : "")
      << "`; its table is `studies/NAME/study.csv`, its full findings `studies/NAME/summary.md`. "
@@ -178,8 +245,10 @@ int reproduce_command(const ReproduceArgs& a) {
   }
   md << "## Settings\n\n";
   md << "- paper bed: `assets/scenes/xu_yu_1997.toml`, " << paper_time << " s simulated, "
-     << "averaging from " << averaging << " s; ideal: `assets/scenes/ideal.toml`, " << ideal_time
-     << " s.\n";
+     << "averaging from " << averaging << " s; the same with `inlet.kind = uniform`, "
+     << uniform_time << " s; ideal: `assets/scenes/ideal.toml`, " << ideal_time << " s.\n";
+  md << "- bubbles: the scene's `[bubbles]` settings (threshold, interval, minimum diameter); the "
+     << "regime rule and the eruption count are in the README (Bubbles and slugs).\n";
   md << "- sweep: " << sr.up.size() << " velocities, " << so.run_time << " s each, averaging from "
      << so.averaging_start << " s; U_mf: least-squares line through the defluidized points of "
      << "the decreasing branch meets the mean of its plateau (split at least squared error).\n";
