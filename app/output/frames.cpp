@@ -114,17 +114,7 @@ void FrameOutput::observe(const Simulation& sim) {
   const auto t0 = Clock::now();
   std::shared_ptr<Snapshot> snap = channel_.acquire();
   take_snapshot(sim, *snap);
-  if (bubbles_) {  // the fine void fraction and the outlines, on the engine thread (about 2 ms)
-    const BubbleFrame& f = bubbles_->analyse(sim.time(), sim.dem().particles());
-    const VoidFractionField& v = bubbles_->void_fraction();
-    snap->void_nx = v.grid.nx;
-    snap->void_ny = v.grid.ny;
-    snap->void_dx = v.grid.dx;
-    snap->void_dy = v.grid.dy;
-    snap->void_fraction.assign(v.eps.begin(), v.eps.end());
-    snap->bubble_edges.clear();
-    outline_edges(f, v.grid, snap->bubble_edges);
-  }
+  if (bubbles_) add_bubble_fields(*bubbles_, sim, *snap);  // on the engine thread (about 2 ms)
   channel_.publish(snap);  // the newest state, for any live reader
   stats_.snapshot_s += seconds_since(t0);
   push({std::move(snap), due.frame, due.montage,

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/steps.hpp"
+#include "run/bubble_recorder.hpp"
 #include "run/packed_bed.hpp"
 
 namespace fluidbed::app {
@@ -207,6 +208,8 @@ void ViewEngine::apply(const ViewCommand& c) {
     }
     case K::reset:
       model_.reset();
+      bubbles_.reset();  // tracking starts again with the bed
+      bubbles_time_ = -1.0;
       ++generation_;
       steps_left_ = 0;
       until_step_ = -1;
@@ -224,13 +227,41 @@ void ViewEngine::apply(const ViewCommand& c) {
     case K::ideal:
       model_.set_ideal(c.value != 0.0);
       break;
+    case K::bubbles:
+      bubbles_on_ = c.value != 0.0;
+      break;
   }
+}
+
+void ViewEngine::add_bubbles(const Simulation& sim, Snapshot& snap) {
+  if (!bubbles_on_) {  // snapshots come back from the pool with their old fields
+    snap.void_fraction.clear();
+    snap.bubble_edges.clear();
+    return;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (!bubbles_ || (sim.time() != bubbles_time_ &&
+                    now - bubbles_at_ >= std::chrono::duration<double>(kBubbleEvery))) {
+    if (!bubbles_)
+      bubbles_ = std::make_unique<BubbleAnalysis>(bubble_settings_for(sim.settings()),
+                                                  bubble_geometry_for(sim.settings()));
+    add_bubble_fields(*bubbles_, sim, bubble_fields_);
+    bubbles_time_ = sim.time();
+    bubbles_at_ = now;
+  }
+  snap.void_nx = bubble_fields_.void_nx;
+  snap.void_ny = bubble_fields_.void_ny;
+  snap.void_dx = bubble_fields_.void_dx;
+  snap.void_dy = bubble_fields_.void_dy;
+  snap.void_fraction = bubble_fields_.void_fraction;
+  snap.bubble_edges = bubble_fields_.bubble_edges;
 }
 
 void ViewEngine::publish() {
   const Simulation& sim = model_.sim();
   std::shared_ptr<Snapshot> snap = channel_.acquire();
   take_snapshot(sim, *snap);
+  add_bubbles(sim, *snap);
   // Filled before publishing, read only afterwards: the status and the snapshot agree.
   const double inlet = model_.inlet_jet_velocity();
   channel_.publish(std::move(snap));

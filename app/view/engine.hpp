@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "analysis/bubbles.hpp"
 #include "scene/settings.hpp"
 #include "sim/simulation.hpp"
 #include "sim/snapshot.hpp"
@@ -30,6 +31,7 @@ struct ViewCommand {
     reset,      // back to the starting (packed) state, bit for bit
     velocity,   // superficial gas velocity `value` (m/s) from the next gas step on
     ideal,      // `value` != 0: contact damping 0 and friction 0 (the paper's ideal case)
+    bubbles,    // `value` != 0: the snapshots carry the bubble outlines and the fine void fraction
   };
   Kind kind = Kind::pause;
   double value = 0.0;
@@ -140,6 +142,7 @@ class ViewEngine {
   void loop();
   void apply(const ViewCommand& c);
   void publish();
+  void add_bubbles(const Simulation& sim, Snapshot& snap);
   void sample_after_step();
   void stopped();  // the engine just stopped stepping: publish the state and its hash
 
@@ -163,6 +166,15 @@ class ViewEngine {
   std::chrono::steady_clock::time_point last_publish_{}, speed_t0_{};
   std::int64_t speed_steps0_ = 0;
   double sim_s_per_wall_s_ = 0.0, steps_per_s_ = 0.0;
+  // The bubble analysis for the outlines (ViewCommand::bubbles): run on a published state at
+  // most every kBubbleEvery wall seconds (the window draws about 30 frames a second), its
+  // fields kept for the snapshots between. A reset starts its tracking again.
+  static constexpr double kBubbleEvery = 1.0 / 30.0;
+  bool bubbles_on_ = false;
+  std::unique_ptr<BubbleAnalysis> bubbles_;
+  Snapshot bubble_fields_;  // the last analysis' void fraction and outlines
+  double bubbles_time_ = -1.0;  // simulated time of that analysis
+  std::chrono::steady_clock::time_point bubbles_at_{};
 
   mutable std::mutex status_mutex_;
   mutable std::condition_variable status_changed_;

@@ -166,6 +166,9 @@ void Viewer::draw_panel() {
     look_.particle_arrow_reference = part_ref;
   ImGui::Checkbox("porosity background", &look_.porosity_background);
   ImGui::SameLine();
+  if (ImGui::Checkbox("bubble outlines", &look_.bubble_outlines))
+    post({ViewCommand::Kind::bubbles, look_.bubble_outlines ? 1.0 : 0.0});
+  ImGui::SameLine();
   ImGui::Text("zoom %.1fx", view_.zoom);
   ImGui::SameLine();
   if (ImGui::SmallButton("1x")) view_ = {};

@@ -46,7 +46,7 @@ struct Reader {
 
 const char* kCommands =
     "velocity, ideal, run, pause, step, reset, wait, colour, gas-arrows, particle-arrows, "
-    "porosity, track, zoom, screenshot, record, quit";
+    "porosity, bubbles, track, zoom, screenshot, record, quit";
 
 ScriptLine parse_line(Reader& r, int line_number) {
   ScriptLine l;
@@ -92,6 +92,9 @@ ScriptLine parse_line(Reader& r, int line_number) {
     l.number = r.on_off(cmd);
   } else if (cmd == "porosity") {
     l.kind = Kind::porosity;
+    l.number = r.on_off(cmd);
+  } else if (cmd == "bubbles") {
+    l.kind = Kind::bubbles;
     l.number = r.on_off(cmd);
   } else if (cmd == "track") {
     l.kind = Kind::track;

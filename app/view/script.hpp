@@ -12,6 +12,7 @@
 //   wait S                     let the bed run for S wall seconds (if running), then stop
 //   colour MODE                speed, force, torque, overlap, mixing
 //   gas-arrows on|off   particle-arrows on|off   porosity on|off
+//   bubbles on|off             outlines of the bubbles and jet cavities found ([bubbles])
 //   track ID | track off       follow a particle and draw its path
 //   zoom F                     zoom factor (1: the whole frame)
 //   screenshot FILE.png        the window as shown (panel and bed)
@@ -36,6 +37,7 @@ struct ScriptLine {
     gas_arrows,
     particle_arrows,
     porosity,
+    bubbles,
     track,
     zoom,
     screenshot,

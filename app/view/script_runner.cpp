@@ -33,6 +33,7 @@ void ScriptRunner::apply(const ScriptLine& l, ScriptTarget& t) {
     case K::gas_arrows: done = t.gas_arrows(on); break;
     case K::particle_arrows: done = t.particle_arrows(on); break;
     case K::porosity: done = t.porosity(on); break;
+    case K::bubbles: done = t.bubbles(on); break;
     case K::track: done = t.track(static_cast<long>(l.number), l.line); break;
     case K::zoom: done = t.zoom(l.number); break;
     case K::screenshot: done = t.screenshot(l.text); break;

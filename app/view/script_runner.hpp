@@ -40,6 +40,7 @@ class ScriptTarget {
   virtual bool gas_arrows(bool /*on*/) { return false; }
   virtual bool particle_arrows(bool /*on*/) { return false; }
   virtual bool porosity(bool /*on*/) { return false; }
+  virtual bool bubbles(bool /*on: outlines of bubbles and jet cavities*/) { return false; }
   virtual bool track(long /*id, -1: off*/, int /*line*/) { return false; }
   virtual bool zoom(double /*factor*/) { return false; }
   virtual bool screenshot(const std::string& /*file*/) { return false; }

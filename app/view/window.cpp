@@ -99,6 +99,7 @@ Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
     ImGui::DestroyContext();
     throw std::runtime_error("the panel (Dear ImGui) could not start on this GL context");
   }
+  if (look_.bubble_outlines) post({ViewCommand::Kind::bubbles, 1.0});
   if (!opt_.script.empty()) {
     settle_frames_ = 0;
     script_wants_running_ = true;
@@ -516,6 +517,12 @@ bool Viewer::particle_arrows(bool on) {
 
 bool Viewer::porosity(bool on) {
   look_.porosity_background = on;
+  return true;
+}
+
+bool Viewer::bubbles(bool on) {
+  look_.bubble_outlines = on;
+  post({ViewCommand::Kind::bubbles, on ? 1.0 : 0.0});
   return true;
 }
 

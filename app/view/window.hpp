@@ -90,6 +90,7 @@ class Viewer : private ScriptTarget {
   bool gas_arrows(bool on) override;
   bool particle_arrows(bool on) override;
   bool porosity(bool on) override;
+  bool bubbles(bool on) override;
   bool track(long id, int line) override;
   bool zoom(double factor) override;
   bool screenshot(const std::string& file) override;

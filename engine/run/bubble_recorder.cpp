@@ -37,6 +37,18 @@ BedGeometry bubble_geometry_for(const Settings& s) {
   return g;
 }
 
+void add_bubble_fields(BubbleAnalysis& analysis, const Simulation& sim, Snapshot& s) {
+  const BubbleFrame& f = analysis.analyse(sim.time(), sim.dem().particles());
+  const VoidFractionField& v = analysis.void_fraction();
+  s.void_nx = v.grid.nx;
+  s.void_ny = v.grid.ny;
+  s.void_dx = v.grid.dx;
+  s.void_dy = v.grid.dy;
+  s.void_fraction.assign(v.eps.begin(), v.eps.end());
+  s.bubble_edges.clear();
+  outline_edges(f, v.grid, s.bubble_edges);
+}
+
 BubbleRecorder::BubbleRecorder(const Simulation& sim)
     : analysis_(bubble_settings_for(sim.settings()), bubble_geometry_for(sim.settings())),
       kind_(kinds_by_initial_height(sim.initial_heights())),

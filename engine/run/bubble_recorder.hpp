@@ -10,6 +10,7 @@
 #include "analysis/bubbles.hpp"
 #include "analysis/mixing.hpp"
 #include "sim/simulation.hpp"
+#include "sim/snapshot.hpp"
 
 namespace fluidbed {
 
@@ -18,6 +19,10 @@ BubbleSettings bubble_settings_for(const Settings& s);
 // The bed as the analysis sees it: the domain, the jets (none without a jet inlet), the particle
 // diameter and gravity.
 BedGeometry bubble_geometry_for(const Settings& s);
+
+// The analysis of the state `sim` is in, written into the snapshot for pictures (frames,
+// montages, the viewer, VTK): the fine void fraction and the outlines of the regions found.
+void add_bubble_fields(BubbleAnalysis& analysis, const Simulation& sim, Snapshot& s);
 
 struct MixingSample {
   double t = 0.0;      // s

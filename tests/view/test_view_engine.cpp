@@ -227,6 +227,36 @@ TEST(ViewEngine, ResetRestoresThePackedStateExactly) {
   EXPECT_EQ(e.status().state_hash, after40);
 }
 
+// The outlines' toggle: with it the snapshots carry the fine void fraction (holding the spheres'
+// volume) and the outlines; the physics is the same bits; without it the fields are empty again.
+TEST(ViewEngine, BubbleToggleFillsTheSnapshotsFieldsAndLeavesThePhysics) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine plain(s, paused()), with(s, paused());
+  plain.start();
+  with.start();
+  post_and_wait(plain, {K::step, 30.0});
+  post_and_wait(with, {K::bubbles, 1.0});
+  post_and_wait(with, {K::step, 30.0});
+  EXPECT_EQ(with.status().state_hash, plain.status().state_hash);
+  EXPECT_TRUE(plain.snapshots().latest()->void_fraction.empty());
+  auto snap = with.snapshots().latest();
+  ASSERT_EQ(snap->void_nx, 20);  // 0.04 m / 2 mm
+  ASSERT_EQ(snap->void_ny, 60);  // 0.12 m / 2 mm
+  ASSERT_EQ(snap->void_fraction.size(), 1200u);
+  double solid = 0.0;
+  for (float e : snap->void_fraction) solid += (1.0 - e) * snap->void_dx * snap->void_dy * snap->thickness;
+  double spheres = 0.0;
+  for (std::size_t i = 0; i < snap->particles(); ++i)
+    spheres += 4.0 / 3.0 * M_PI * std::pow(snap->radius[i], 3);
+  EXPECT_NEAR(solid, spheres, 1e-3 * spheres);
+  EXPECT_EQ(snap->bubble_edges.size() % 4, 0u);
+  post_and_wait(with, {K::bubbles, 0.0});
+  post_and_wait(with, {K::step, 2.0});
+  post_and_wait(with, {K::step, 2.0});  // both pool buffers republished
+  EXPECT_TRUE(with.snapshots().latest()->void_fraction.empty());
+  EXPECT_TRUE(with.snapshots().latest()->bubble_edges.empty());
+}
+
 TEST(ViewEngine, IdealCaseKeepsTheStateAndChangesTheContactLaw) {
   const Settings s = testing::view_test_settings();
   ViewEngine e(s, paused());
@@ -338,6 +368,7 @@ step 3
 wait 0.5
 colour mixing
 gas-arrows off
+bubbles on
 track 12
 track off
 zoom 2.5
@@ -347,7 +378,7 @@ record stop
 at 0.1 quit
 )",
                                             "demo.txt");
-  ASSERT_EQ(lines.size(), 13u);
+  ASSERT_EQ(lines.size(), 14u);
   EXPECT_EQ(lines[0].at, 0.05);
   EXPECT_EQ(lines[0].kind, app::ScriptLine::Kind::velocity);
   EXPECT_EQ(lines[0].number, 1.8);
@@ -357,13 +388,15 @@ at 0.1 quit
   EXPECT_EQ(lines[2].number, 3.0);
   EXPECT_EQ(lines[4].text, "mixing");
   EXPECT_EQ(lines[5].number, 0.0);
-  EXPECT_EQ(lines[6].number, 12.0);
-  EXPECT_EQ(lines[7].number, -1.0);
-  EXPECT_EQ(lines[9].text, "out/a.png");
-  EXPECT_EQ(lines[10].kind, app::ScriptLine::Kind::record);
-  EXPECT_EQ(lines[11].kind, app::ScriptLine::Kind::record_stop);
-  EXPECT_EQ(lines[12].kind, app::ScriptLine::Kind::quit);
-  EXPECT_EQ(lines[12].at, 0.1);
+  EXPECT_EQ(lines[6].kind, app::ScriptLine::Kind::bubbles);
+  EXPECT_EQ(lines[6].number, 1.0);
+  EXPECT_EQ(lines[7].number, 12.0);
+  EXPECT_EQ(lines[8].number, -1.0);
+  EXPECT_EQ(lines[10].text, "out/a.png");
+  EXPECT_EQ(lines[11].kind, app::ScriptLine::Kind::record);
+  EXPECT_EQ(lines[12].kind, app::ScriptLine::Kind::record_stop);
+  EXPECT_EQ(lines[13].kind, app::ScriptLine::Kind::quit);
+  EXPECT_EQ(lines[13].at, 0.1);
 }
 
 TEST(ViewScript, NamesTheLineAndTheProblem) {
