@@ -49,6 +49,16 @@ TrackedRun run_tracked(Settings s, double until,
 
 // One number into its printf format; "n/a" for a value the run could not measure (no bubble
 // tracked, no spectrum).
+// One scene of the report: run with the bubble analysis (tracking particles near `track_at`),
+// its files and figures into `dir`.
+TrackedRun run_into(const fs::path& dir, const Settings& s, double until,
+                    const std::vector<std::pair<double, double>>& track_at = {}) {
+  TrackedRun r = run_tracked(s, until, track_at);
+  write_run_outputs(dir.string(), r.result);
+  plot_run(dir.string(), r.result, r.tracks, s.domain.width, s.domain.height, true);
+  return r;
+}
+
 std::string fmt(const char* f, double v) {
   if (!std::isfinite(v)) return "n/a";
   char b[64];
@@ -122,10 +132,8 @@ int reproduce_command(const ReproduceArgs& a) {
   Settings paper = load_scene(scenes + "xu_yu_1997.toml", a.overrides);
   paper.threads = a.threads;
   paper.diagnostics.averaging_start = averaging;
-  const TrackedRun pr = run_tracked(paper, paper_time, jet_region_points(paper.domain.width));
-  const fs::path paper_dir = fs::path(out) / "paper_bed";
-  write_run_outputs(paper_dir.string(), pr.result);
-  plot_run(paper_dir.string(), pr.result, pr.tracks, paper.domain.width, paper.domain.height, true);
+  const TrackedRun pr = run_into(fs::path(out) / "paper_bed", paper, paper_time,
+                                 jet_region_points(paper.domain.width));
 
   // 1b. The same bed fed over its whole bottom (a uniform distributor): the like-with-like check of
   // dp against the bed weight (model.md 2.1: the jetted bed's dead zones rest on the floor).
@@ -134,20 +142,14 @@ int reproduce_command(const ReproduceArgs& a) {
   uniform.threads = a.threads;
   uniform.inlet.kind = InletKind::Uniform;
   uniform.diagnostics.averaging_start = averaging;
-  const TrackedRun ur = run_tracked(uniform, uniform_time, {});
-  const fs::path uniform_dir = fs::path(out) / "uniform";
-  write_run_outputs(uniform_dir.string(), ur.result);
-  plot_run(uniform_dir.string(), ur.result, {}, uniform.domain.width, uniform.domain.height, true);
+  const TrackedRun ur = run_into(fs::path(out) / "uniform", uniform, uniform_time);
 
   // 2. The ideal case (Figs 16-17).
   log("== the ideal case (eta = 0, gamma = 0)");
   Settings ideal = load_scene(scenes + "ideal.toml", a.overrides);
   ideal.threads = a.threads;
   ideal.diagnostics.averaging_start = averaging;
-  const TrackedRun ir = run_tracked(ideal, ideal_time, {});
-  const fs::path ideal_dir = fs::path(out) / "ideal";
-  write_run_outputs(ideal_dir.string(), ir.result);
-  plot_run(ideal_dir.string(), ir.result, {}, ideal.domain.width, ideal.domain.height, true);
+  const TrackedRun ir = run_into(fs::path(out) / "ideal", ideal, ideal_time);
 
   // 3. The velocity sweep (Fig. 6) and U_mf.
   log("== the velocity sweep");

@@ -1,6 +1,9 @@
 #include "view/script.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <utility>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -57,13 +60,23 @@ ScriptLine parse_line(Reader& r, int line_number) {
     if (l.at < 0.0) r.fail("'at' needs a time >= 0 s");
     cmd = r.word("a command after 'at T'");
   }
-  if (cmd == "velocity") {
+  // The switches: a command name and on|off.
+  static constexpr std::pair<const char*, Kind> switches[] = {
+      {"ideal", Kind::ideal},
+      {"gas-arrows", Kind::gas_arrows},
+      {"particle-arrows", Kind::particle_arrows},
+      {"porosity", Kind::porosity},
+      {"bubbles", Kind::bubbles},
+  };
+  const auto* sw = std::find_if(std::begin(switches), std::end(switches),
+                                [&](const auto& e) { return cmd == e.first; });
+  if (sw != std::end(switches)) {
+    l.kind = sw->second;
+    l.number = r.on_off(cmd);
+  } else if (cmd == "velocity") {
     l.kind = Kind::velocity;
     l.number = r.number("a superficial velocity in m/s");
     if (l.number < 0.0) r.fail("velocity must be >= 0 m/s");
-  } else if (cmd == "ideal") {
-    l.kind = Kind::ideal;
-    l.number = r.on_off(cmd);
   } else if (cmd == "run") {
     l.kind = Kind::run;
   } else if (cmd == "pause") {
@@ -84,18 +97,6 @@ ScriptLine parse_line(Reader& r, int line_number) {
     if (l.text != "speed" && l.text != "force" && l.text != "torque" && l.text != "overlap" &&
         l.text != "mixing")
       r.fail("unknown colour mode '" + l.text + "' (known: speed, force, torque, overlap, mixing)");
-  } else if (cmd == "gas-arrows") {
-    l.kind = Kind::gas_arrows;
-    l.number = r.on_off(cmd);
-  } else if (cmd == "particle-arrows") {
-    l.kind = Kind::particle_arrows;
-    l.number = r.on_off(cmd);
-  } else if (cmd == "porosity") {
-    l.kind = Kind::porosity;
-    l.number = r.on_off(cmd);
-  } else if (cmd == "bubbles") {
-    l.kind = Kind::bubbles;
-    l.number = r.on_off(cmd);
   } else if (cmd == "track") {
     l.kind = Kind::track;
     const std::string w = r.word("a particle id or off");

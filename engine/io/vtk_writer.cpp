@@ -131,25 +131,24 @@ void write_particles_vtp(const std::string& path, const Snapshot& s) {
   write_file_atomically(path, [&](std::ostream& out) { out << o.str(); });
 }
 
-void write_gas_vti(const std::string& path, const Snapshot& s) {
-  if (!s.has_gas()) return;
-  const auto cells = static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny);
-  const std::vector<double> none;
-  const std::string extent = "0 " + std::to_string(s.nx) + " 0 " + std::to_string(s.ny) + " 0 1";
+namespace {
+
+// An ImageData file of nx x ny cells of dx x dy (x the slab's thickness) at the snapshot's time:
+// `cell_data` writes the cells' arrays (`scalars`, `vectors`: the attributes ParaView shows first).
+template <class CellData>
+void write_image_vti(const std::string& path, const Snapshot& s, int nx, int ny, double dx,
+                     double dy, const char* attributes, CellData cell_data) {
+  const std::string extent = "0 " + std::to_string(nx) + " 0 " + std::to_string(ny) + " 0 1";
   std::ostringstream o;
   o << "<?xml version=\"1.0\"?>\n"
     << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" "
        "header_type=\"UInt32\">\n"
     << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"0 0 0\" Spacing=\""
-    << number(s.width / s.nx) << " " << number(s.height / s.ny) << " " << number(s.thickness)
-    << "\">\n";
+    << number(dx) << " " << number(dy) << " " << number(s.thickness) << "\">\n";
   time_field(o, s.time);
   o << "    <Piece Extent=\"" << extent << "\">\n"
-    << "      <CellData Scalars=\"porosity\" Vectors=\"velocity\">\n";
-  const char* in = "        ";
-  floats(o, "velocity", 3, interleave(cells, s.gas_ux, s.gas_uy, none), in);
-  floats(o, "porosity", 1, s.porosity, in);
-  floats(o, "pressure", 1, s.pressure, in);
+    << "      <CellData " << attributes << ">\n";
+  cell_data(o, "        ");
   o << "      </CellData>\n"
     << "    </Piece>\n"
     << "  </ImageData>\n"
@@ -157,26 +156,28 @@ void write_gas_vti(const std::string& path, const Snapshot& s) {
   write_file_atomically(path, [&](std::ostream& out) { out << o.str(); });
 }
 
+}  // namespace
+
+void write_gas_vti(const std::string& path, const Snapshot& s) {
+  if (!s.has_gas()) return;
+  const auto cells = static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny);
+  write_image_vti(path, s, s.nx, s.ny, s.width / s.nx, s.height / s.ny,
+                  "Scalars=\"porosity\" Vectors=\"velocity\"",
+                  [&](std::ostringstream& o, const char* in) {
+                    const std::vector<double> none;
+                    floats(o, "velocity", 3, interleave(cells, s.gas_ux, s.gas_uy, none), in);
+                    floats(o, "porosity", 1, s.porosity, in);
+                    floats(o, "pressure", 1, s.pressure, in);
+                  });
+}
+
 void write_void_vti(const std::string& path, const Snapshot& s) {
   if (s.void_fraction.empty()) return;
-  const std::string extent =
-      "0 " + std::to_string(s.void_nx) + " 0 " + std::to_string(s.void_ny) + " 0 1";
-  std::ostringstream o;
-  o << "<?xml version=\"1.0\"?>\n"
-    << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-       "header_type=\"UInt32\">\n"
-    << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"0 0 0\" Spacing=\""
-    << number(s.void_dx) << " " << number(s.void_dy) << " " << number(s.thickness) << "\">\n";
-  time_field(o, s.time);
-  o << "    <Piece Extent=\"" << extent << "\">\n"
-    << "      <CellData Scalars=\"void_fraction\">\n";
-  const std::vector<double> eps(s.void_fraction.begin(), s.void_fraction.end());
-  floats(o, "void_fraction", 1, eps, "        ");
-  o << "      </CellData>\n"
-    << "    </Piece>\n"
-    << "  </ImageData>\n"
-    << "</VTKFile>\n";
-  write_file_atomically(path, [&](std::ostream& out) { out << o.str(); });
+  write_image_vti(path, s, s.void_nx, s.void_ny, s.void_dx, s.void_dy,
+                  "Scalars=\"void_fraction\"", [&](std::ostringstream& o, const char* in) {
+                    const std::vector<double> eps(s.void_fraction.begin(), s.void_fraction.end());
+                    floats(o, "void_fraction", 1, eps, in);
+                  });
 }
 
 VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
