@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/roots.hpp"
 #include "core/threads.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
@@ -141,21 +142,15 @@ double fixed_bed_force_ratio(const Settings& fixed, double U, double time, doubl
 }
 
 double fixed_bed_umf(const Settings& fixed, double lo, double hi, double time, double& dp_lo) {
-  double dp = 0.0;
-  double flo = fixed_bed_force_ratio(fixed, lo, time, dp_lo) - 1.0;
-  double fhi = fixed_bed_force_ratio(fixed, hi, time, dp) - 1.0;
-  for (int k = 0; k < 8 && std::fabs(hi - lo) > 0.002; ++k) {
-    const double mid = hi - fhi * (hi - lo) / (fhi - flo);
-    const double fm = fixed_bed_force_ratio(fixed, mid, time, dp) - 1.0;
-    if ((fm < 0.0) == (flo < 0.0)) {
-      lo = mid;
-      flo = fm;
-    } else {
-      hi = mid;
-      fhi = fm;
-    }
-  }
-  return hi - fhi * (hi - lo) / (fhi - flo);
+  bool first = true;  // false_position evaluates lo first: its dp is the caller's
+  auto excess = [&](double U) {
+    double dp = 0.0;
+    const double f = fixed_bed_force_ratio(fixed, U, time, dp) - 1.0;
+    if (first) dp_lo = dp;
+    first = false;
+    return f;
+  };
+  return false_position(excess, lo, hi, 8, 0.002).secant_root();
 }
 
 Settings bed_scene(Size size, const std::vector<std::string>& overrides) {

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "../test_support.hpp"
+#include "core/roots.hpp"
 #include "coupling/drag.hpp"
 #include "analysis/packing_metrics.hpp"
 #include "scene/scene_loader.hpp"
@@ -139,19 +140,9 @@ TEST(CoupledBed, MinimumFluidizationFromTheModel) {
     return (model_a ? b.fluid_force : b.drag) / (b.weight_per_area * b.area);
   };
   auto umf = [&](bool model_a, double lo, double hi) {
-    double flo = force_ratio(lo, model_a) - 1.0, fhi = force_ratio(hi, model_a) - 1.0;
-    for (int k = 0; k < 6 && std::fabs(hi - lo) > 0.005; ++k) {
-      const double mid = hi - fhi * (hi - lo) / (fhi - flo);
-      const double fm = force_ratio(mid, model_a) - 1.0;
-      if ((fm < 0.0) == (flo < 0.0)) {
-        lo = mid;
-        flo = fm;
-      } else {
-        hi = mid;
-        fhi = fm;
-      }
-    }
-    return 0.5 * (lo + hi);
+    const RootBracket b = false_position(
+        [&](double U) { return force_ratio(U, model_a) - 1.0; }, lo, hi, 6, 0.005);
+    return 0.5 * (b.lo + b.hi);
   };
   const double model_a = umf(true, 1.5, 2.3);
   const double printed = umf(false, 2.3, 4.5);
