@@ -118,9 +118,14 @@ void Viewer::draw_panel() {
     ImGui::Separator();
     ImGui::TextUnformatted("Gas");
     if (!ImGui::IsAnyItemActive()) velocity_ = static_cast<float>(st.superficial_velocity);
-    const float top = std::max(5.0f, 1.5f * static_cast<float>(st.superficial_velocity));
-    if (ImGui::SliderFloat("U (m/s)", &velocity_, 0.0f, top, "%.2f"))
+    // The slider's range is fixed from the scene's own velocity when the panel first shows it: a
+    // range that followed the live value ran away under a held mouse button (each frame's new
+    // velocity widened the range, which moved the value under the pointer again).
+    if (velocity_top_ <= 0.0f)
+      velocity_top_ = std::max(5.0f, 1.5f * static_cast<float>(st.superficial_velocity));
+    if (ImGui::SliderFloat("U (m/s)", &velocity_, 0.0f, velocity_top_, "%.2f"))
       post({ViewCommand::Kind::velocity, static_cast<double>(velocity_)});
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Ctrl+click to type a velocity");
     ImGui::Text("jet %.1f m/s (fastest inlet face %.1f m/s)", st.jet_velocity,
                 st.inlet_jet_velocity);
   }

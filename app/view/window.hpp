@@ -115,6 +115,7 @@ class Viewer : private ScriptTarget {
   int frame_w_ = 0, frame_h_ = 0;  // the drawn frame (px)
   render::FrameLayout layout_;
   float velocity_ = 0.0f;  // the slider (m/s)
+  float velocity_top_ = 0.0f;  // its range's top (m/s), fixed at the first frame with gas
   bool ideal_ = false;
   std::optional<std::size_t> hovered_;
   bool mouse_moved_ = false;
