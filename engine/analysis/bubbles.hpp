@@ -1,6 +1,8 @@
 #pragma once
 // Bubbles and slugs, measured (model.md 6; issue 15): detection on the fine void-fraction grid,
 // tracking from frame to frame with events, statistics over a window and the flow regime.
+// (bubbles.cpp: settings, detection, tracking, the per-frame driver; bubble_statistics.cpp:
+// statistics, the regime, the history's checkpoint, bubbles.csv.)
 //
 // Detection. A cell is void when its window void fraction (void_fraction.hpp: eps over a square
 // sample window, 2.5 particle diameters by default, centred on each fine cell) exceeds the
