@@ -49,6 +49,26 @@ inline ContactForce contact_force(const ContactParams& p, double dn, double& ds,
   return f;
 }
 
+// What a contact dissipates over a step of h (J), from the quantities contact_force used: the
+// dashpots' eta v^2 h (the tangential one only while the contact sticks), and while it slides the
+// Coulomb force times the slip, the shear the spring gave up when it was held at its limit
+// (ds_before: the displacement after this step's increment, before contact_force capped it).
+struct ContactLoss {
+  double dashpot = 0.0;   // J
+  double friction = 0.0;  // J
+};
+inline ContactLoss contact_loss(const ContactParams& p, const ContactForce& f, double ds_before,
+                                double ds_after, double vn, double vt, double h) {
+  ContactLoss l;
+  l.dashpot = p.eta_n * vn * vn * h;
+  if (f.sliding) {
+    l.friction = std::fabs(f.ft) * std::fabs(ds_before - ds_after);
+  } else {
+    l.dashpot += p.eta_t * vt * vt * h;
+  }
+  return l;
+}
+
 // Eq 13: the time since two spheres first touched, found by moving j back from i along the
 // relative velocity until their centres are R apart. p = x_j - x_i, w = v_j - v_i, L = |p| < R.
 // Returns 0 when the spheres have no relative velocity (they were placed touching).

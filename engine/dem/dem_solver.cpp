@@ -13,6 +13,40 @@
 
 namespace fluidbed {
 
+namespace {
+
+// Adds a sequence of amounts, which comes in particle order, to the ledgers of the particles'
+// blocks: summed locally, stored when the block changes (and at the end).
+class BlockLedger {
+ public:
+  explicit BlockLedger(EnergyLedger* blocks) : blocks_(blocks) {}
+  BlockLedger(const BlockLedger&) = delete;
+  BlockLedger& operator=(const BlockLedger&) = delete;
+  ~BlockLedger() { flush(); }
+  void add(std::size_t particle, double gas_work, const ContactLoss& loss) {
+    const std::size_t b = particle / kParticleBlock;
+    if (b != block_) {
+      flush();
+      block_ = b;
+    }
+    sum_.gas_work += gas_work;
+    sum_.dashpot += loss.dashpot;
+    sum_.friction += loss.friction;
+  }
+
+ private:
+  void flush() {
+    if (block_ != kNone) blocks_[block_] += sum_;
+    sum_ = EnergyLedger{};
+  }
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  EnergyLedger* blocks_;
+  std::size_t block_ = kNone;
+  EnergyLedger sum_;
+};
+
+}  // namespace
+
 DemSolver::DemSolver(const DemParams& d, Particles particles)
     : walls_(d.walls),
       params_(d.contact),
@@ -30,6 +64,7 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   parallel_ = threads_ > 1 && n >= 256;
   partial_.assign(static_cast<std::size_t>(threads_), StepPartial{});
   block_ke_.assign(particle_blocks(n), 0.0);
+  block_ledger_.assign(particle_blocks(n), EnergyLedger{});
   double dmax = 0.0;
   for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
   list_.configure(width_, height_, dmax, d.skin * dmax, n);
@@ -119,6 +154,7 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
   }
   const ContactParams params = params_;
   int sliding = 0;
+  BlockLedger ledger(block_ledger_.data());  // by the pairs' first particles: they come in i order
   for (std::int64_t q = 0; q < count; ++q) {
     const bool fresh = on[q] < 0;
     const std::int64_t k = fresh ? ~on[q] : on[q];
@@ -143,7 +179,10 @@ void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPar
       dn = R - Lc;
     }
     ds += vt * tau;  // eqs 15, 17
+    const double ds_before = ds;
     const ContactForce f = contact_force(params, dn, ds, vn, vt);
+    const ContactLoss loss = contact_loss(params, f, ds_before, ds, vn, vt, dtau);
+    ledger.add(static_cast<std::size_t>(i), 0.0, loss);
     ldn[k] = dn;
     lds[k] = ds;
     lfx[k] = f.fn * nx + f.ft * tx;
@@ -179,6 +218,11 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
   const std::int32_t* gl = L.gather.data();
   double *fx = a.fx, *fy = a.fy, *tq = a.torque, *ov = overlap_.data();
   const double g = gravity_;
+  {  // the gas's work over the step, at the velocities the contacts see
+    BlockLedger ledger(block_ledger_.data());
+    for (std::size_t i = b; i < e; ++i)
+      ledger.add(i, (a.ext_fx[i] * vx[i] + a.ext_fy[i] * vy[i]) * dtau, ContactLoss{});
+  }
   for (std::size_t i = b; i < e; ++i) {
     double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
     for (std::int32_t q = gb[i]; q < gb[i + 1]; ++q) {
@@ -226,6 +270,7 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
     }
     const double nx = -wall.nx, ny = -wall.ny;  // from the particle into the wall
     const double tx = -ny, ty = nx;
+    BlockLedger ledger(block_ledger_.data());
     for (std::size_t q = 0; q < count; ++q) {
       const bool fresh = on[q] < 0;
       const std::size_t i = static_cast<std::size_t>(fresh ? ~on[q] : on[q]);
@@ -242,7 +287,9 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
         dn = overlap;
       }
       ds += vt * tau;
+      const double ds_before = ds;
       const ContactForce f = contact_force(params, dn, ds, vn, vt);
+      ledger.add(i, 0.0, contact_loss(params, f, ds_before, ds, vn, vt, dtau));
       hdn[s] = dn;
       hds[s] = ds;
       fx[i] += f.fn * nx + f.ft * tx;
@@ -349,6 +396,8 @@ void DemSolver::step_particles(const RangeWork& after) {
     }
     lap(Phase::Neighbours);
     thread_range(t, T, b, e);
+    for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk)
+      block_ledger_[blk] = EnergyLedger{};
     pair_pass<Incremental>(list_.first_begin[b], list_.first_begin[e], h, partial_[t]);
 #pragma omp barrier
     particle_pass<Incremental>(b, e, h, partial_[t]);
@@ -377,6 +426,9 @@ void DemSolver::step_particles(const RangeWork& after) {
   double ke = 0.0;
   for (double k : block_ke_) ke += k;
   diag_.kinetic_energy = ke;
+  EnergyLedger step_ledger;
+  for (const EnergyLedger& l : block_ledger_) step_ledger += l;
+  ledger_ += step_ledger;
   outside_ = sum.outside;
 }
 
@@ -446,6 +498,23 @@ void DemSolver::finish_step() {
     os << " (limit " << 100.0 * overlap_limit_ << " %, diagnostics.overlap_limit)";
     fail(os.str());
   }
+}
+
+SpringEnergy DemSolver::spring_energy() const {
+  SpringEnergy e;
+  const double kn = params_.kn, kt = params_.kt;
+  auto add = [&](double dn, double ds) {
+    const double c = std::max(dn, 0.0);  // the normal spring acts in compression only (eq 3)
+    e.normal += 0.5 * kn * c * c;
+    e.tangential += 0.5 * kt * ds * ds;
+  };
+  const NeighbourList& L = list_;
+  for (std::size_t k = 0; k < L.size(); ++k)
+    if (L.touching[k]) add(L.dn[k], L.ds[k]);
+  const WallHistory& wh = state_.walls;
+  for (std::size_t s = 0; s < wh.active.size(); ++s)
+    if (wh.active[s]) add(wh.dn[s], wh.ds[s]);
+  return e;
 }
 
 std::uint64_t DemSolver::state_hash() const {

@@ -56,6 +56,29 @@ struct StepDiagnostics {
   double kinetic_energy = 0.0;          // J, translation and rotation
 };
 
+// The work of the forces that the mechanical energy does not hold, summed step by step since the
+// solver was built: each force's power at the velocities the contact law saw, times dt. With the
+// kinetic, potential and spring energies of the state (analysis/energy_budget.hpp) it closes the
+// particles' energy budget; what it leaves over is the integration error.
+struct EnergyLedger {
+  double gas_work = 0.0;  // J, done on the particles by the gas (ext_fx, ext_fy: drag, pressure gradient)
+  double dashpot = 0.0;   // J, dissipated by the normal and tangential dashpots (>= 0)
+  double friction = 0.0;  // J, dissipated by sliding contacts (>= 0)
+  EnergyLedger& operator+=(const EnergyLedger& o) {
+    gas_work += o.gas_work;
+    dashpot += o.dashpot;
+    friction += o.friction;
+    return *this;
+  }
+};
+
+// The energy stored in the contacts' springs, from their displacement history (J): 1/2 kappa_n
+// delta_n^2 in compression and 1/2 kappa_t delta_t^2, pairs and walls.
+struct SpringEnergy {
+  double normal = 0.0;
+  double tangential = 0.0;
+};
+
 class DemSolver {
  public:
   // Takes the particles (placed, with mass properties) and builds the grid and history.
@@ -93,6 +116,9 @@ class DemSolver {
   // Largest overlap ratio of each particle's contacts at the last force evaluation (pairs:
   // 1 - L / (R_i + R_j); walls: 1 - distance / R_i, halved to the same scale).
   const std::vector<double>& particle_overlap() const { return overlap_; }
+  // The energy ledger since construction, and the springs' energy now.
+  const EnergyLedger& energy_ledger() const { return ledger_; }
+  SpringEnergy spring_energy() const;
 
   // Replaces the state (a loaded file, its pair history included); the particle count must match.
   void set_state(DemState s);
@@ -143,6 +169,10 @@ class DemSolver {
   mutable PhaseTimes times_;
   std::vector<StepPartial> partial_;  // per thread
   std::vector<double> block_ke_;      // J, per block of particles (core/threads.hpp)
+  // The step's energy ledger per block of particles (a pair counts in its first particle's
+  // block), summed in block order: the same bits for any thread count.
+  std::vector<EnergyLedger> block_ledger_;
+  EnergyLedger ledger_;
   bool outside_ = false;
   std::vector<std::size_t> split_;    // thread t's particles: [split_[t], split_[t + 1])              // a particle left the box in the last step
   int worst_pair_i_ = -1, worst_pair_j_ = -1;

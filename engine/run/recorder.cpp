@@ -19,6 +19,8 @@ RunRecorder::RunRecorder(const Simulation& sim, std::int64_t last_step, bool bub
   if (s.scene.kind == SceneKind::Drop) bounces_.emplace(sim.dem(), s.physics.gravity);
   last_gas_steps_ = sim.has_gas() ? sim.coupling_diagnostics().gas_steps : 0;
   has_gas_ = sim.has_gas();
+  energy_start_ = energy_state(sim.dem(), s.physics.gravity);
+  ledger_start_ = sim.dem().energy_ledger();
   if (bubbles) {
     bubbles_.emplace(sim);
     bubbles_->analyse(sim);
@@ -78,6 +80,7 @@ void RunRecorder::write_row(const Simulation& sim) {
     dp_max_time_ = t;
   }
   pending_.kinetic_energy = d.kinetic_energy;
+  pending_.energy = energy_budget(sim.dem(), sim.settings().physics.gravity, energy_start_, ledger_start_);
   pending_.pair_contacts = d.pair_contacts;
   pending_.wall_contacts = d.wall_contacts;
   if (sim.has_gas()) {
@@ -144,6 +147,8 @@ nlohmann::json RunRecorder::summary(const Simulation& sim, double wall) const {
   j["max_overlap_ratio_final"] = sim.dem().diagnostics().max_overlap_ratio;
   j["kinetic_energy_peak_j"] = ke_peak_;
   j["kinetic_energy_final_j"] = sim.dem().diagnostics().kinetic_energy;
+  j["energy"] = energy_summary(
+      energy_start_, energy_budget(sim.dem(), s.physics.gravity, energy_start_, ledger_start_), sim_time);
   j["contacts_final"] = sim.dem().diagnostics().pair_contacts + sim.dem().diagnostics().wall_contacts;
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/bounce_tracker.hpp"
+#include "analysis/energy_budget.hpp"
 #include "analysis/spectrum.hpp"
 #include "run/bubble_recorder.hpp"
 #include "sim/simulation.hpp"
@@ -30,6 +31,8 @@ struct TimeseriesRow {
   double mass_residual = 0.0;
   double max_cfl = 0.0;
   double fluid_force_y = 0.0;
+  // The particles' energy budget since the run's start (analysis/energy_budget.hpp).
+  EnergyBudget energy;
   // With the bubble analysis (run --bubbles): bubbles in the latest frame, and the regime of
   // the frames of the trailing BubbleRecorder::kRegimeWindow.
   int bubbles = 0;
@@ -67,6 +70,8 @@ class RunRecorder {
   std::optional<BounceTracker> bounces_;
   std::optional<BubbleRecorder> bubbles_;
   bool has_gas_ = false;
+  EnergyBudget energy_start_;      // the state's energy when recording began
+  EnergyLedger ledger_start_;      // and the solver's ledger then
   std::vector<TimeseriesRow> rows_;
   TimeseriesRow pending_;
 

@@ -96,7 +96,8 @@ void write_run_outputs(const std::string& dir, const RunResult& r) {
   if (ec) throw InputError("cannot create output folder " + dir + ": " + ec.message());
   std::string csv =
       "t,dp,max_overlap_ratio,max_wall_overlap_ratio,kinetic_energy,contacts,pair_contacts,"
-      "wall_contacts,simple_iterations,mass_residual,max_cfl,fluid_force_y";
+      "wall_contacts,simple_iterations,mass_residual,max_cfl,fluid_force_y,e_kinetic,e_rotation,"
+      "e_potential,e_spring_n,e_spring_t,w_gas,e_dashpot,e_friction,e_residual";
   csv += r.bubbles ? ",bubbles,regime\n" : "\n";
   char line[256];
   for (const auto& row : r.rows) {
@@ -105,6 +106,11 @@ void write_run_outputs(const std::string& dir, const RunResult& r) {
                   row.kinetic_energy, row.pair_contacts + row.wall_contacts, row.pair_contacts,
                   row.wall_contacts, row.simple_iterations, row.mass_residual, row.max_cfl,
                   row.fluid_force_y);
+    csv += line;
+    const EnergyBudget& e = row.energy;
+    std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g",
+                  e.kinetic_translation, e.kinetic_rotation, e.potential, e.spring_normal,
+                  e.spring_tangential, e.gas_work, e.dashpot, e.friction, e.residual);
     csv += line;
     if (r.bubbles) {
       std::snprintf(line, sizeof line, ",%d,%s", row.bubbles, to_string(row.regime));
