@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numbers>
 #include <cmath>
+#include <cstdio>
 
 namespace fluidbed {
 
@@ -35,7 +36,8 @@ CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double
   const double f_lo = std::max(0.2, 2.0 / span), f_hi = std::min(25.0, 0.25 / h);
   if (!(f_hi > f_lo)) return s;
   const int bins = 600;
-  double best_p = -1.0, best_f = 0.0, total = 0.0;
+  std::vector<double> freq(bins + 1), power(bins + 1);
+  double total = 0.0;
   for (int b = 0; b <= bins; ++b) {
     const double f = f_lo * std::pow(f_hi / f_lo, static_cast<double>(b) / bins);
     double re = 0.0, im = 0.0;
@@ -44,15 +46,45 @@ CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double
       re += y[k] * std::cos(ph);
       im += y[k] * std::sin(ph);
     }
-    const double p = re * re + im * im;
-    total += p;
-    if (p > best_p) {
-      best_p = p;
-      best_f = f;
-    }
+    freq[b] = f;
+    power[b] = re * re + im * im;
+    total += power[b];
   }
+  const auto best = static_cast<std::size_t>(
+      std::max_element(power.begin(), power.end()) - power.begin());
+  const double best_p = power[best], best_f = freq[best];
   s.dominant_period = 1.0 / best_f;
   s.dominant_power_share = total > 0.0 ? best_p / total : 0.0;
+  s.amplitude = 2.0 * std::sqrt(best_p) / nn;
+  s.amplitude_share = mean != 0.0 ? s.amplitude / std::fabs(mean) : INFINITY;
+  // The spectrum around the peak: the octave either side without the peak's own neighbourhood
+  // (a fifth of its frequency, several resolution widths for any peak of kMinCycles or more).
+  std::vector<double> around;
+  for (int b = 0; b <= bins; ++b) {
+    const double r = freq[b] / best_f;
+    if ((r >= 0.5 && r <= 1.0 / 1.25) || (r >= 1.25 && r <= 2.0)) around.push_back(power[b]);
+  }
+  double floor = 0.0;
+  if (!around.empty()) {
+    std::nth_element(around.begin(), around.begin() + around.size() / 2, around.end());
+    floor = around[around.size() / 2];
+  }
+  s.peak_prominence = floor > 0.0 ? best_p / floor : INFINITY;
+  char why[160];
+  if (best_f * span < kMinCycles) {
+    std::snprintf(why, sizeof why, "no regular cycle: the highest peak (%.3g s) repeats only %.1f times in the record",
+                  s.dominant_period, best_f * span);
+  } else if (s.peak_prominence < kProminence) {
+    std::snprintf(why, sizeof why, "no regular cycle: the highest peak (%.3g s) stands %.1f times above the spectrum around it (%.0f needed)",
+                  s.dominant_period, s.peak_prominence, kProminence);
+  } else if (s.amplitude_share < kAmplitudeShare) {
+    std::snprintf(why, sizeof why, "no regular cycle: the oscillation at %.3g s is %.1f %% of the mean (%.0f %% needed)",
+                  s.dominant_period, 100.0 * s.amplitude_share, 100.0 * kAmplitudeShare);
+  } else {
+    std::snprintf(why, sizeof why, "regular cycle");
+    s.regular = true;
+  }
+  s.verdict = why;
 
   // Cycle lengths from mean crossings of the smoothed signal.
   const auto half = static_cast<std::size_t>(std::max(1.0, 0.05 * s.dominant_period / h));

@@ -200,7 +200,13 @@ void RunRecorder::add_gas_summary(const Simulation& sim, nlohmann::json& j) cons
     }
   const CycleStats cyc = analyse_cycles(ts, dps);
   j["dp_spectrum"] = to_json(dp_spectrum());
-  j["dp_dominant_period_s"] = cyc.ok ? nlohmann::json(cyc.dominant_period) : nlohmann::json(nullptr);
+  // The period only where it is a cycle (analysis/cycles.hpp); the highest peak's period always.
+  j["dp_dominant_period_s"] =
+      cyc.ok && cyc.regular ? nlohmann::json(cyc.dominant_period) : nlohmann::json(nullptr);
+  j["dp_peak_period_s"] = cyc.ok ? nlohmann::json(cyc.dominant_period) : nlohmann::json(nullptr);
+  j["dp_cycle"] = cyc.ok ? cyc.verdict : std::string("no regular cycle: record too short");
+  j["dp_peak_prominence"] = cyc.ok && std::isfinite(cyc.peak_prominence) ? nlohmann::json(cyc.peak_prominence) : nlohmann::json(nullptr);
+  j["dp_peak_amplitude_share"] = cyc.ok && std::isfinite(cyc.amplitude_share) ? nlohmann::json(cyc.amplitude_share) : nlohmann::json(nullptr);
   j["dp_dominant_power_share"] = cyc.dominant_power_share;
   j["dp_cycles"] = cyc.cycles;
   j["dp_cycle_length_mean_s"] = cyc.cycle_mean;

@@ -2,6 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <random>
 
 #include "analysis/cycles.hpp"
 
@@ -45,4 +49,89 @@ TEST(Cycles, IrregularCyclesShowSpread) {
   EXPECT_NEAR(c.cycle_mean, 0.45, 0.02);
   EXPECT_NEAR(c.cycle_cv, 1.0 / 3.0, 0.03);
   EXPECT_FALSE(analyse_cycles({0.0, 1.0}, {1.0, 2.0}).ok);
+}
+
+namespace {
+
+// 6 s of a signal sampled every ms from t = 1 s, as a run's dp after start-up.
+template <class F>
+fluidbed::CycleStats cycles_of(F signal) {
+  std::vector<double> t, y;
+  for (int k = 0; k < 6000; ++k) {
+    const double tt = 1.0 + 1e-3 * k;
+    t.push_back(tt);
+    y.push_back(signal(tt, k));
+  }
+  return analyse_cycles(t, y);
+}
+
+}  // namespace
+
+TEST(Cycles, NoiseAloneIsNoRegularCycle) {
+  // White noise of 300 Pa on 3000 Pa, ten seeds: the highest peak is always somewhere, never a
+  // cycle.
+  double worst = 0.0;
+  for (std::uint32_t seed = 1; seed <= 10; ++seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 300.0);
+    const auto c = cycles_of([&](double, int) { return 3000.0 + noise(rng); });
+    ASSERT_TRUE(c.ok);
+    EXPECT_FALSE(c.regular) << "seed " << seed << ": " << c.verdict;
+    EXPECT_LT(c.peak_prominence, fluidbed::kProminence) << "seed " << seed;
+    EXPECT_EQ(c.verdict.rfind("no regular cycle", 0), 0u) << c.verdict;
+    worst = std::max(worst, c.peak_prominence);
+  }
+  std::printf("white noise: highest prominence of ten records %.1f\n", worst);
+}
+
+TEST(Cycles, RedNoiseIsNoRegularCycle) {
+  // A random walk pulled back to its mean (Ornstein-Uhlenbeck, relaxation time 0.05 s, spread
+  // 1500 Pa): a red spectrum whose low frequencies stand far above the median of the band, but
+  // not above their own surroundings. Ten seeds.
+  for (std::uint32_t seed = 1; seed <= 10; ++seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> kick(0.0, 1.0);
+    const double tau = 0.05, step = 1500.0 * std::sqrt(2.0 * 1e-3 / tau);
+    double x = 0.0;
+    const auto c = cycles_of([&](double, int) {
+      x += -x * 1e-3 / tau + step * kick(rng);
+      return 3000.0 + x;
+    });
+    ASSERT_TRUE(c.ok);
+    EXPECT_FALSE(c.regular) << "seed " << seed << ": " << c.verdict;
+    EXPECT_GT(c.amplitude_share, fluidbed::kAmplitudeShare);  // the size alone would pass
+    std::printf("red noise, seed %u: %s (prominence %.1f)\n", seed, c.verdict.c_str(), c.peak_prominence);
+  }
+}
+
+TEST(Cycles, SlowDriftIsNoRegularCycle) {
+  // dp relaxing over the record (an exponential the least-squares line does not remove) with a
+  // little noise: the highest peak is at the record's length, too slow to be a cycle.
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 20.0);
+  const auto c = cycles_of([&](double t, int) { return 2800.0 + 600.0 * std::exp(-(t - 1.0) / 1.5) + noise(rng); });
+  ASSERT_TRUE(c.ok);
+  EXPECT_FALSE(c.regular) << c.verdict;
+  std::printf("drift: %s\n", c.verdict.c_str());
+}
+
+TEST(Cycles, ClearPeriodInNoiseIsARegularCycle) {
+  // The ideal bed of Fig. 17: a 0.45 s cycle of +-1500 Pa on 3000 Pa, with noise of 400 Pa.
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 400.0);
+  const auto c = cycles_of([&](double t, int) { return 3000.0 + 1500.0 * std::sin(2.0 * M_PI * t / 0.45) + noise(rng); });
+  ASSERT_TRUE(c.ok);
+  EXPECT_TRUE(c.regular) << c.verdict;
+  EXPECT_EQ(c.verdict, "regular cycle");
+  EXPECT_NEAR(c.dominant_period, 0.45, 0.45 * 0.05);
+  EXPECT_NEAR(c.amplitude, 1500.0, 1500.0 * 0.05);
+}
+
+TEST(Cycles, SmallOscillationIsNoRegularCycle) {
+  // A clean period that moves dp by 2 % of its mean: prominent, but not the bed's cycle.
+  const auto c = cycles_of([&](double t, int) { return 3000.0 + 60.0 * std::sin(2.0 * M_PI * t / 0.45); });
+  ASSERT_TRUE(c.ok);
+  EXPECT_GT(c.peak_prominence, fluidbed::kProminence);
+  EXPECT_FALSE(c.regular) << c.verdict;
+  EXPECT_NE(c.verdict.find("of the mean"), std::string::npos) << c.verdict;
 }
