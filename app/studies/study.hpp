@@ -169,5 +169,6 @@ Report coupling_study(const Options& o);
 Report modules_study(const Options& o);
 Report model_form_study(const Options& o);
 Report failures_study(const Options& o);
+Report energy_study(const Options& o);
 
 }  // namespace fluidbed::app::study
