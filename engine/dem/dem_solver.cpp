@@ -218,26 +218,29 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
   const std::int32_t* gl = L.gather.data();
   double *fx = a.fx, *fy = a.fy, *tq = a.torque, *ov = overlap_.data();
   const double g = gravity_;
-  {  // the gas's work over the step, at the velocities the contacts see
-    BlockLedger ledger(block_ledger_.data());
-    for (std::size_t i = b; i < e; ++i)
-      ledger.add(i, (a.ext_fx[i] * vx[i] + a.ext_fy[i] * vy[i]) * dtau, ContactLoss{});
-  }
-  for (std::size_t i = b; i < e; ++i) {
-    double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
-    for (std::int32_t q = gb[i]; q < gb[i + 1]; ++q) {
-      const std::int32_t c = gl[q];
-      const std::int32_t k = c ^ (c >> 31);              // ~c for the entries stored negated
-      const double sign = static_cast<double>(1 | (c >> 31));  // -1 there: x + (-1) f is x - f
-      fxi += sign * lfx[k];
-      fyi += sign * lfy[k];
-      tqi += r[i] * lft[k];
-      ovi = std::max(ovi, lratio[k]);
+  // Block by block (thread ranges are whole blocks), so that each block's share of the gas's
+  // work over the step, at the velocities the contacts see, is summed on the way.
+  for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk) {
+    const std::size_t i0 = std::max(b, blk * kParticleBlock), i1 = std::min(e, (blk + 1) * kParticleBlock);
+    double gas = 0.0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
+      gas += P.ext_fx[i] * vx[i] + P.ext_fy[i] * vy[i];
+      for (std::int32_t q = gb[i]; q < gb[i + 1]; ++q) {
+        const std::int32_t c = gl[q];
+        const std::int32_t k = c ^ (c >> 31);              // ~c for the entries stored negated
+        const double sign = static_cast<double>(1 | (c >> 31));  // -1 there: x + (-1) f is x - f
+        fxi += sign * lfx[k];
+        fyi += sign * lfy[k];
+        tqi += r[i] * lft[k];
+        ovi = std::max(ovi, lratio[k]);
+      }
+      fx[i] = fxi;
+      fy[i] = fyi;
+      tq[i] = tqi;
+      ov[i] = ovi;
     }
-    fx[i] = fxi;
-    fy[i] = fyi;
-    tq[i] = tqi;
-    ov[i] = ovi;
+    block_ledger_[blk].gas_work += gas * dtau;
   }
   WallHistory& wh = state_.walls;
   const int nw = static_cast<int>(walls_.size());
