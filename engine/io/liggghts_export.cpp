@@ -268,6 +268,14 @@ void write_deck(std::ostream& out, const Settings& s, const LiggghtsExportOption
     out << "thermo          " << every << "   # steps: diagnostics.output_interval\n\n";
   }
   const std::int64_t steps = steps_for(s.time.end, s.time.dt);
+  if (o.frames_every > 0.0) {
+    const std::int64_t frame_steps = std::max<std::int64_t>(1, steps_for(o.frames_every, s.time.dt));
+    out << "# Every sphere every " << num(o.frames_every) << " s, full precision (export option frames_every).\n";
+    out << "dump frames all custom " << frame_steps << " frames.dump id type radius x y z vx vy vz omegaz\n";
+    out << "dump_modify frames sort id format \"%d %d";
+    for (int k = 0; k < 8; ++k) out << " %.15g";
+    out << "\"\n\n";
+  }
   out << "run             " << steps << "   # time.end = " << num(s.time.end)
       << " s at dt = " << num(s.time.dt) << " s\n\n";
   out << "# Every sphere at the end, sorted by id: fluidbed measures the bed height from it (mean\n"
@@ -341,13 +349,17 @@ LiggghtsCase write_liggghts_case(const Settings& s, const std::string& dir,
   return c;
 }
 
-Particles read_liggghts_dump(const std::string& path, double density) {
+std::vector<LiggghtsFrame> read_liggghts_frames(const std::string& path, double density) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read " + path);
   auto bad = [&](const std::string& why) { return InputError(path + ": " + why); };
-  std::map<long long, std::array<double, 3>> last;  // id -> radius, x, y
-  bool found = false;
+  std::vector<LiggghtsFrame> frames;
+  std::int64_t step = 0;
   for (std::string line; std::getline(in, line);) {
+    if (line.rfind("ITEM: TIMESTEP", 0) == 0) {
+      if (!std::getline(in, line) || !(std::istringstream(line) >> step)) throw bad("no step after ITEM: TIMESTEP");
+      continue;
+    }
     if (line.rfind("ITEM: NUMBER OF ATOMS", 0) != 0) continue;
     long long n = -1;
     if (!std::getline(in, line) || !(std::istringstream(line) >> n) || n < 0)
@@ -358,34 +370,47 @@ Particles read_liggghts_dump(const std::string& path, double density) {
     std::istringstream head(line.substr(11));
     std::vector<std::string> cols;
     for (std::string c; head >> c;) cols.push_back(c);
+    auto find = [&](const char* name) {
+      return static_cast<std::size_t>(std::find(cols.begin(), cols.end(), name) - cols.begin());
+    };
     auto col = [&](const char* name) {
-      const auto it = std::find(cols.begin(), cols.end(), name);
-      if (it == cols.end()) throw bad(std::string("no \"") + name + "\" column");
-      return static_cast<std::size_t>(it - cols.begin());
+      const std::size_t c = find(name);
+      if (c == cols.size()) throw bad(std::string("no \"") + name + "\" column");
+      return c;
     };
     const std::size_t cid = col("id"), cr = col("radius"), cx = col("x"), cy = col("y");
-    last.clear();
+    const std::size_t cvx = find("vx"), cvy = find("vy"), cw = find("omegaz");
+    std::map<long long, std::array<double, 6>> rows;  // id -> radius, x, y, vx, vy, omegaz
     std::vector<double> v(cols.size());
     for (long long k = 0; k < n; ++k) {
       if (!std::getline(in, line)) throw bad("the file ends inside a snapshot");
       std::istringstream row(line);
       for (double& value : v)
         if (!(row >> value)) throw bad("a short row: " + line);
-      last[std::llround(v[cid])] = {v[cr], v[cx], v[cy]};
+      auto opt = [&](std::size_t c) { return c < v.size() ? v[c] : 0.0; };
+      rows[std::llround(v[cid])] = {v[cr], v[cx], v[cy], opt(cvx), opt(cvy), opt(cw)};
     }
-    found = true;
+    LiggghtsFrame f;
+    f.step = step;
+    f.particles.resize(rows.size());
+    std::size_t i = 0;
+    for (const auto& [id, a] : rows) {
+      f.particles.set_sphere(i, 2.0 * a[0], density);
+      f.particles.x[i] = a[1];
+      f.particles.y[i] = a[2];
+      f.particles.vx[i] = a[3];
+      f.particles.vy[i] = a[4];
+      f.particles.w[i] = a[5];
+      ++i;
+    }
+    frames.push_back(std::move(f));
   }
-  if (!found) throw bad("no snapshot");
-  Particles p;
-  p.resize(last.size());
-  std::size_t i = 0;
-  for (const auto& [id, a] : last) {
-    p.set_sphere(i, 2.0 * a[0], density);
-    p.x[i] = a[1];
-    p.y[i] = a[2];
-    ++i;
-  }
-  return p;
+  if (frames.empty()) throw bad("no snapshot");
+  return frames;
+}
+
+Particles read_liggghts_dump(const std::string& path, double density) {
+  return std::move(read_liggghts_frames(path, density).back().particles);
 }
 
 }  // namespace fluidbed

@@ -35,6 +35,7 @@
 //   "packed" writes the lattice start and runs the packing (packing_time, gas left out) as a
 //   first stage of the deck, with the packing scene's contact law when particles.packing_scene
 //   names one. A frozen bed (particles.frozen) has nothing to move without the gas: refused.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,10 @@ struct LiggghtsExportOptions {
   // Front and back walls as wall/gran z planes, z left free: the slab as six walls. Slower than
   // holding z (the default); kept for the timing comparison.
   bool front_back_walls = false;
+  // Every so many seconds of the scene's run, a snapshot of every sphere in DIR/frames.dump
+  // (id type radius x y z vx vy vz omegaz, full precision): the energy comparison reads it.
+  // 0: none.
+  double frames_every = 0.0;  // s
 };
 
 struct LiggghtsCase {
@@ -60,9 +65,15 @@ struct LiggghtsCase {
 LiggghtsCase write_liggghts_case(const Settings& s, const std::string& dir,
                                  const LiggghtsExportOptions& options = {});
 
-// The particles of a LIGGGHTS `custom` dump with columns id, radius, x, y (others ignored, any
-// order), in id order; the last snapshot when the file holds several. Masses from `density`.
+// The snapshots of a LIGGGHTS `custom` dump with columns id, radius, x, y (others ignored, any
+// order; vx, vy and omegaz read when present), each in id order. Masses from `density`.
 // Throws InputError when the file cannot be read or lacks a column.
+struct LiggghtsFrame {
+  std::int64_t step = 0;
+  Particles particles;
+};
+std::vector<LiggghtsFrame> read_liggghts_frames(const std::string& path, double density);
+// The last snapshot of such a dump.
 Particles read_liggghts_dump(const std::string& path, double density);
 
 }  // namespace fluidbed
