@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "build_info.hpp"
 #include "cli/bench_peer.hpp"
 #include "cli/commands.hpp"
 #include "cli/export.hpp"
@@ -51,6 +52,8 @@ void add_output_options(CLI::App* cmd, fluidbed::app::OutputArgs& o) {
 int main(int argc, char** argv) {
   CLI::App app{"fluidbed: a gas-fluidized bed of discrete particles and locally averaged gas"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", fluidbed::app::version_line(),
+                       "print the version and the git commit it was built from");
   fluidbed::app::RunArgs run_args, bench_args;
   fluidbed::app::SweepArgs sweep_args;
   fluidbed::app::ReproduceArgs reproduce_args;
@@ -146,6 +149,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::cerr << "fluidbed: " << e.what() << "\n";
