@@ -1,5 +1,7 @@
 #include "scene/scene_keys.hpp"
 
+#include <charconv>
+
 #include "scene/settings.hpp"
 #include "scene/toml_value.hpp"
 
@@ -17,6 +19,21 @@ std::string type_of(E) {
   return "choice";
 }
 
+// A default as a person writes it: the shortest text that reads back as the same double
+// (0.15, not the resolved-scene writer's 0.14999999999999999, whose text the packed-bed cache
+// hashes and so stays as it is), with ".0" where TOML would otherwise read an integer.
+std::string default_text(double v) {
+  char buf[32];
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  std::string t(buf, end);
+  if (t.find_first_of(".eEn") == std::string::npos) t += ".0";
+  return t;
+}
+template <class T>
+std::string default_text(const T& v) {
+  return toml_value(v);
+}
+
 // Reads one section's fields off the table into SceneKeys.
 struct KeyCollector {
   std::string section;
@@ -28,7 +45,7 @@ struct KeyCollector {
     k.section = section;
     k.name = std::string(name);
     k.type = type_of(v);
-    k.default_value = toml_value(v);
+    k.default_value = default_text(v);
     k.unit = std::string(info.unit);
     k.help = std::string(info.help);
     if constexpr (is_option_v<T>) {
