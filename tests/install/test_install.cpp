@@ -1,9 +1,12 @@
 // The installed program: `cmake --install` into a temporary prefix, run from an unrelated folder
-// with no $FLUIDBED_ASSETS, finds its scenes and font in PREFIX/share/fluidbed.
+// with no $FLUIDBED_ASSETS, finds its scenes and font in PREFIX/share/fluidbed; the Debian package
+// declares its dependencies and holds the program, the scenes and the manual page.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <set>
+#include <sstream>
 
 #include "../test_support.hpp"
 
@@ -24,6 +27,10 @@ Shell shell(const std::string& command, const fs::path& dir, const std::string& 
                           " > '" + log.string() + "' 2>&1";
   const int raw = std::system(cmd.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_file(log)};
+}
+
+bool on_path(const std::string& program) {
+  return std::system(("command -v " + program + " > /dev/null 2>&1").c_str()) == 0;
 }
 
 std::vector<std::string> shipped_scenes() {
@@ -78,4 +85,50 @@ TEST(Install, InstalledCopyRunsASceneFromItsShareFolderAndDrawsAFrame) {
   EXPECT_NE(read_file(work / "bench" / "bench.json").find("\"particles\": 7"), std::string::npos)
       << read_file(work / "bench" / "bench.json");
   fs::remove_all(root);
+}
+
+TEST(Install, DebianPackageDeclaresItsDependenciesAndHoldsProgramScenesAndManPage) {
+  if (!on_path("dpkg-deb") || !on_path("dpkg-shlibdeps") || !fs::exists(FLUIDBED_CPACK))
+    GTEST_SKIP() << "cpack, dpkg-deb or dpkg-shlibdeps missing (Debian's cmake and dpkg-dev)";
+  const fs::path dir = temp_dir("install-deb");
+  // The existing build, packed into a folder of the test's own (nothing is rebuilt).
+  const Shell pack = shell(std::string("'") + FLUIDBED_CPACK + "' -G DEB -B '" + dir.string() +
+                               "' --config '" FLUIDBED_BUILD_DIR "/CPackConfig.cmake'",
+                           dir, "cpack");
+  ASSERT_EQ(pack.status, 0) << pack.out;
+  fs::path deb;  // fluidbed_VERSION_ARCH.deb
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind("fluidbed_" + std::string(FLUIDBED_VERSION) + "_", 0) == 0 &&
+        e.path().extension() == ".deb")
+      deb = e.path();
+  ASSERT_FALSE(deb.empty()) << pack.out;
+
+  const Shell info = shell("dpkg-deb --info '" + deb.string() + "'", dir, "info");
+  ASSERT_EQ(info.status, 0) << info.out;
+  const auto field = [&info](const std::string& name) {
+    const auto at = info.out.find("\n " + name + ": ");
+    if (at == std::string::npos) return std::string();
+    const auto start = at + name.size() + 4;
+    return info.out.substr(start, info.out.find('\n', start) - start);
+  };
+  EXPECT_EQ(field("Package"), "fluidbed");
+  EXPECT_EQ(field("Version"), FLUIDBED_VERSION);
+  // From the libraries the program links (dpkg-shlibdeps), not a hand-written list.
+  const std::string depends = field("Depends");
+  for (const char* package : {"libc6", "libstdc++6", "libgomp1", "libosmesa6", "libglfw3",
+                              "libtomlplusplus3", "zlib1g"})
+    EXPECT_NE(depends.find(package), std::string::npos) << package << " not in: " << depends;
+  EXPECT_NE(field("Recommends").find("ffmpeg"), std::string::npos) << info.out;
+
+  const Shell list = shell("dpkg-deb -c '" + deb.string() + "'", dir, "list");
+  ASSERT_EQ(list.status, 0) << list.out;
+  std::set<std::string> files;
+  std::istringstream lines(list.out);
+  for (std::string line; std::getline(lines, line);) files.insert(line.substr(line.rfind(' ') + 1));
+  EXPECT_TRUE(files.count("./usr/bin/fluidbed")) << list.out;
+  EXPECT_TRUE(files.count("./usr/share/man/man1/fluidbed.1.gz")) << list.out;
+  EXPECT_TRUE(files.count("./usr/share/fluidbed/fonts/DejaVuSans.ttf")) << list.out;
+  for (const std::string& scene : shipped_scenes())
+    EXPECT_TRUE(files.count("./usr/share/fluidbed/scenes/" + scene)) << scene << "\n" << list.out;
+  fs::remove_all(dir);
 }
