@@ -5,7 +5,9 @@
 
 namespace fluidbed::render {
 
-std::string source_asset_dir() { return FLUIDBED_SOURCE_ASSET_DIR; }
+std::string source_asset_dir() {
+  return FLUIDBED_SOURCE_ASSET_DIR;
+}
 
 std::string find_asset_dir(const char* env, const std::filesystem::path& program) {
   if (env != nullptr && *env != '\0') return env;

@@ -149,7 +149,8 @@ void print_man(const std::vector<SceneKey>& keys, const std::vector<CommandDoc>&
        "GL context, ffmpeg failed).\n"
     << ".SH EXAMPLES\n.nf\n"
     << "fluidbed run /usr/share/fluidbed/scenes/drop.toml \\-\\-frames \\-\\-out drop\n"
-    << "fluidbed run xu_yu_1997.toml \\-\\-until 3 \\-\\-plots \\-\\-set inlet.superficial_velocity=2.2\n"
+    << "fluidbed run xu_yu_1997.toml \\-\\-until 3 \\-\\-plots \\-\\-set "
+       "inlet.superficial_velocity=2.2\n"
     << "fluidbed keys contact\n"
     << "fluidbed keys \\-\\-format toml > my_scene.toml\n.fi\n"
     << ".SH SEE ALSO\n.BR ffmpeg (1)\n";

@@ -16,8 +16,8 @@ struct KeysArgs {
 
 // One command of the command line as the manual page lists it (taken from the parser itself).
 struct CommandDoc {
-  std::string name;         // "run"
-  std::string description;  // one line
+  std::string name;                                          // "run"
+  std::string description;                                   // one line
   std::vector<std::pair<std::string, std::string>> options;  // "--until FLOAT", what it does
 };
 

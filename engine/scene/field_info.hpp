@@ -27,7 +27,9 @@ namespace ranges {
 inline constexpr Range any{};
 inline constexpr Range positive{0.0, std::numeric_limits<double>::infinity(), true, false};
 inline constexpr Range non_negative{0.0, std::numeric_limits<double>::infinity(), false, false};
-constexpr Range at_least(double n) { return {n, std::numeric_limits<double>::infinity(), false, false}; }
+constexpr Range at_least(double n) {
+  return {n, std::numeric_limits<double>::infinity(), false, false};
+}
 inline constexpr Range open_unit{0.0, 1.0, true, true};       // (0, 1)
 inline constexpr Range unit_fraction{0.0, 1.0, true, false};  // (0, 1]: a share that is not 0
 inline constexpr Range below_one{0.0, 1.0, false, true};      // [0, 1)

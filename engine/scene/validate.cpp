@@ -80,8 +80,9 @@ void validate(const Settings& s) {
     // Porosity counts each sphere in the cells it straddles; the exact split assumes a sphere
     // is cut by at most one grid line each way.
     if (d.width / g.cells_x < p.diameter || d.height / g.cells_y < p.diameter)
-      refuse("gas.cells_x", "makes gas cells smaller than a particle (cells must be at least one "
-                            "particles.diameter wide and high)");
+      refuse("gas.cells_x",
+             "makes gas cells smaller than a particle (cells must be at least one "
+             "particles.diameter wide and high)");
   }
   if (s.inlet.jet_width * s.inlet.jets > d.width)
     refuse("inlet.jet_width", "times inlet.jets is wider than domain.width");

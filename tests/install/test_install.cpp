@@ -45,14 +45,17 @@ std::vector<std::string> shipped_scenes() {
 TEST(Install, InstalledCopyRunsASceneFromItsShareFolderAndDrawsAFrame) {
   const fs::path root = temp_dir("install-prefix");
   const fs::path prefix = root / "opt" / "fluidbed";
-  const Shell install = shell(std::string(FLUIDBED_CMAKE) + " --install '" FLUIDBED_BUILD_DIR
-                              "' --prefix '" + prefix.string() + "'", root, "install");
+  const Shell install =
+      shell(std::string(FLUIDBED_CMAKE) + " --install '" FLUIDBED_BUILD_DIR "' --prefix '" +
+                prefix.string() + "'",
+            root, "install");
   ASSERT_EQ(install.status, 0) << install.out;
   const fs::path share = prefix / "share" / "fluidbed";
   EXPECT_TRUE(fs::exists(prefix / "bin" / "fluidbed"));
   EXPECT_TRUE(fs::exists(prefix / "share" / "man" / "man1" / "fluidbed.1.gz"));
   EXPECT_TRUE(fs::exists(share / "fonts" / "DejaVuSans.ttf"));
-  for (const std::string& scene : shipped_scenes()) EXPECT_TRUE(fs::exists(share / "scenes" / scene)) << scene;
+  for (const std::string& scene : shipped_scenes())
+    EXPECT_TRUE(fs::exists(share / "scenes" / scene)) << scene;
 
   // From a folder that has nothing to do with the build or the sources.
   const fs::path work = root / "somewhere" / "else";
@@ -98,7 +101,8 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndHoldsProgramScenesAndManPag
   ASSERT_EQ(pack.status, 0) << pack.out;
   fs::path deb;  // fluidbed_VERSION_ARCH.deb
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename().string().rfind("fluidbed_" + std::string(FLUIDBED_VERSION) + "_", 0) == 0 &&
+    if (e.path().filename().string().rfind("fluidbed_" + std::string(FLUIDBED_VERSION) + "_", 0) ==
+            0 &&
         e.path().extension() == ".deb")
       deb = e.path();
   ASSERT_FALSE(deb.empty()) << pack.out;
@@ -115,8 +119,8 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndHoldsProgramScenesAndManPag
   EXPECT_EQ(field("Version"), FLUIDBED_VERSION);
   // From the libraries the program links (dpkg-shlibdeps), not a hand-written list.
   const std::string depends = field("Depends");
-  for (const char* package : {"libc6", "libstdc++6", "libgomp1", "libosmesa6", "libglfw3",
-                              "libtomlplusplus3", "zlib1g"})
+  for (const char* package :
+       {"libc6", "libstdc++6", "libgomp1", "libosmesa6", "libglfw3", "libtomlplusplus3", "zlib1g"})
     EXPECT_NE(depends.find(package), std::string::npos) << package << " not in: " << depends;
   EXPECT_NE(field("Recommends").find("ffmpeg"), std::string::npos) << info.out;
 

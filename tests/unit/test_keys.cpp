@@ -26,8 +26,8 @@ struct Collect {
   std::vector<Field>* out;
   template <class T>
   void operator()(std::string_view key, const T&, const FieldInfo& info) const {
-    out->push_back({section, std::string(key), info, std::is_same_v<T, double>,
-                    std::is_same_v<T, int>});
+    out->push_back(
+        {section, std::string(key), info, std::is_same_v<T, double>, std::is_same_v<T, int>});
   }
 };
 
@@ -76,7 +76,8 @@ TEST(Keys, EveryFieldIsListedWithItsUnitRangeAndHelp) {
   const std::vector<Field> fields = table_fields();
   ASSERT_GT(fields.size(), 60u);
   std::size_t rows = 0;
-  for (const std::string& line : lines) rows += line.find('.') != std::string::npos && line[0] != ' ';
+  for (const std::string& line : lines)
+    rows += line.find('.') != std::string::npos && line[0] != ' ';
   EXPECT_EQ(rows, fields.size()) << r.out;  // one row per field, no more
   for (const Field& f : fields) {
     const std::string name = f.section + "." + f.key;
@@ -132,7 +133,8 @@ TEST(Keys, TomlIsACompleteSceneAtTheDefaultsThatRuns) {
   ASSERT_NO_THROW(loaded = parse_scene(r.out, "keys.toml"));
   EXPECT_EQ(to_toml(loaded), to_toml(Settings{}));
   // A scene that sets a value differs: the comparison is not blind.
-  EXPECT_NE(to_toml(parse_scene(r.out, "keys.toml", {"contact.friction=0.31"})), to_toml(Settings{}));
+  EXPECT_NE(to_toml(parse_scene(r.out, "keys.toml", {"contact.friction=0.31"})),
+            to_toml(Settings{}));
   // And it runs as is (shortened: the whole second would take minutes of this test's time).
   const auto dir = temp_dir("keys-toml-run");
   write_file(dir / "defaults.toml", r.out);
