@@ -1,11 +1,14 @@
 // fluidbed: a gas-fluidized bed of discrete particles (Xu & Yu 1997). See README.md.
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cstdio>
 #include <iostream>
 
+#include "build_info.hpp"
 #include "cli/bench_peer.hpp"
 #include "cli/commands.hpp"
 #include "cli/export.hpp"
+#include "cli/keys.hpp"
 #include "cli/study.hpp"
 #include "cli/view.hpp"
 #include "core/errors.hpp"
@@ -46,17 +49,46 @@ void add_output_options(CLI::App* cmd, fluidbed::app::OutputArgs& o) {
   cmd->add_option("--gl-backend", o.gl_backend, "GL context backend: osmesa, glfw (osmesa)");
 }
 
+// The commands and their options as the parser knows them, for the manual page (`keys --format
+// man`), so that it cannot list an option the program does not take.
+std::vector<fluidbed::app::CommandDoc> command_docs(const CLI::App& app) {
+  std::vector<fluidbed::app::CommandDoc> docs;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    fluidbed::app::CommandDoc d{sub->get_name(), sub->get_description(), {}};
+    for (const CLI::Option* opt : sub->get_options()) {
+      if (opt->get_name() == "--help") continue;  // every command has it
+      std::string name = opt->get_name(true, true);
+      name = name.substr(0, name.find('{'));  // a negated flag's "{false}"
+      if (opt->get_positional()) {
+        for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      } else if (opt->get_type_size() != 0) {
+        // "INT:NONNEGATIVE" is an INT; "TEXT:{text,toml,man}" shows its choices.
+        const std::string type = opt->get_type_name();
+        const auto colon = type.find(':');
+        const bool choices = colon != std::string::npos && type.compare(colon + 1, 1, "{") == 0;
+        name += " " + (choices ? type.substr(colon + 1) : type.substr(0, colon));
+      }
+      d.options.emplace_back(name, opt->get_description());
+    }
+    docs.push_back(std::move(d));
+  }
+  return docs;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"fluidbed: a gas-fluidized bed of discrete particles and locally averaged gas"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", fluidbed::app::version_line(),
+                       "print the version and the git commit it was built from");
   fluidbed::app::RunArgs run_args, bench_args;
   fluidbed::app::SweepArgs sweep_args;
   fluidbed::app::ReproduceArgs reproduce_args;
   fluidbed::app::ExportArgs export_args;
   fluidbed::app::StudyArgs study_args;
   fluidbed::app::ViewArgs view_args;
+  fluidbed::app::KeysArgs keys_args;
 
   auto* run = app.add_subcommand("run", "run a scene and write summary.json and timeseries.csv");
   add_scene_options(run, run_args, true);
@@ -129,6 +161,12 @@ int main(int argc, char** argv) {
   study->add_option("--jobs", study_args.jobs, "points at once (default: one per core)")
       ->check(CLI::NonNegativeNumber);
 
+  auto* keys = app.add_subcommand("keys", "every scene key: default, unit, range and help");
+  keys->add_option("section", keys_args.section, "only this section (e.g. contact)");
+  keys->add_option("--format", keys_args.format,
+                   "text (a table), toml (a complete scene at the defaults), man (the manual page)")
+      ->check(CLI::IsMember({"text", "toml", "man"}));
+
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     std::string names;
@@ -147,6 +185,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::cerr << "fluidbed: " << e.what() << "\n";
     return 2;
@@ -162,6 +202,7 @@ int main(int argc, char** argv) {
     if (*exporter) return fluidbed::app::export_command(export_args);
     if (*study) return fluidbed::app::study_command(study_args);
     if (*view) return fluidbed::app::view_command(view_args);
+    if (*keys) return fluidbed::app::keys_command(keys_args, command_docs(app));
   } catch (const fluidbed::InputError& e) {
     std::cerr << "fluidbed: error: " << e.what() << "\n";
     return 2;

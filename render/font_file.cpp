@@ -2,7 +2,6 @@
 
 #include <stb_truetype.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -12,9 +11,6 @@ namespace fluidbed::render {
 std::vector<std::string> font_search_paths(const std::string& asset_dir) {
   constexpr const char* kFile = "fonts/DejaVuSans.ttf";
   std::vector<std::string> paths;
-  if (const char* env = std::getenv("FLUIDBED_ASSETS"); env != nullptr && *env != '\0') {
-    paths.push_back(std::string(env) + "/" + kFile);
-  }
   if (!asset_dir.empty()) paths.push_back(asset_dir + "/" + kFile);
   paths.emplace_back("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf");
   return paths;

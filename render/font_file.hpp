@@ -15,8 +15,9 @@ struct FontFile {
   int offset = 0;  // bytes to the file's first font (stbtt_GetFontOffsetForIndex)
 };
 
-// Where the font is looked for, in order: $FLUIDBED_ASSETS/fonts/DejaVuSans.ttf (when set),
-// ASSET_DIR/fonts/DejaVuSans.ttf (when not empty), then the Debian package's copy.
+// Where the font is looked for, in order: ASSET_DIR/fonts/DejaVuSans.ttf (when not empty; the
+// program passes render/asset_dir.hpp's asset_dir(), which honours $FLUIDBED_ASSETS), then the
+// Debian package's copy.
 std::vector<std::string> font_search_paths(const std::string& asset_dir);
 
 // The first of PATHS that reads as a TrueType font; std::runtime_error naming every path tried

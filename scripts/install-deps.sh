@@ -5,6 +5,7 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PACKAGES=(
   g++ cmake ninja-build pkg-config
+  dpkg-dev file         # the Debian package (cpack -G DEB): dpkg-shlibdeps reads its dependencies
   libtomlplusplus-dev   # scene files
   libcli11-dev          # command line
   nlohmann-json3-dev    # summary.json

@@ -90,8 +90,8 @@ class Image {
   std::vector<std::uint8_t> pixels_;
 };
 
-// Where the font is looked for (render/font_file.hpp): $FLUIDBED_ASSETS, the source tree's
-// assets, then the Debian package's copy.
+// Where the font is looked for (render/font_file.hpp): the given assets folder (the program's is
+// render::asset_dir()), then the Debian package's copy.
 using render::font_search_paths;
 
 // A TrueType font held in memory. Immutable, cheap to copy, safe to share between threads.
@@ -99,8 +99,8 @@ class Font {
  public:
   // The first of PATHS that reads as a font; throws std::runtime_error naming every path tried.
   static Font load(const std::vector<std::string>& paths);
-  static Font load_default(const std::string& source_asset_dir) {
-    return load(font_search_paths(source_asset_dir));
+  static Font load_default(const std::string& asset_dir) {
+    return load(font_search_paths(asset_dir));
   }
   const std::string& path() const;
 

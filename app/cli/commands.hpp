@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "render/asset_dir.hpp"
+
 namespace fluidbed::app {
 
 // Pictures and files of a run at exact simulated times (`run --frames --video --vtk --montage`,
@@ -58,7 +60,8 @@ int bench_command(const RunArgs& a);
 int sweep_command(const SweepArgs& a);
 int reproduce_command(const ReproduceArgs& a);
 
-// The shipped assets folder (scenes, fonts): $FLUIDBED_ASSETS, else the source tree's.
-std::string asset_dir();
+// The shipped assets folder (scenes, fonts): $FLUIDBED_ASSETS, else an installed copy's share
+// folder, else the source tree's (render/asset_dir.hpp).
+using render::asset_dir;
 
 }  // namespace fluidbed::app

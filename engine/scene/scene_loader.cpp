@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "core/errors.hpp"
+#include "scene/toml_value.hpp"
 #include <algorithm>
 
 namespace fluidbed {
@@ -38,7 +39,7 @@ struct Reader {
     throw InputError(where(key) + " must be " + expected + ", not " + describe(n));
   }
 
-  void operator()(std::string_view key, double& field, std::string_view) const {
+  void operator()(std::string_view key, double& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
     if (!n) return;
     if (auto v = n->value_exact<double>()) {
@@ -50,7 +51,7 @@ struct Reader {
     }
     if (!std::isfinite(field)) throw InputError(where(key) + " must be a finite number");
   }
-  void operator()(std::string_view key, int& field, std::string_view) const {
+  void operator()(std::string_view key, int& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
     if (!n) return;
     auto v = n->value_exact<std::int64_t>();
@@ -59,7 +60,7 @@ struct Reader {
       throw InputError(where(key) + " is out of range");
     field = static_cast<int>(*v);
   }
-  void operator()(std::string_view key, std::uint64_t& field, std::string_view) const {
+  void operator()(std::string_view key, std::uint64_t& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
     if (!n) return;
     auto v = n->value_exact<std::int64_t>();
@@ -67,14 +68,14 @@ struct Reader {
     if (*v < 0) throw InputError(where(key) + " must not be negative");
     field = static_cast<std::uint64_t>(*v);
   }
-  void operator()(std::string_view key, bool& field, std::string_view) const {
+  void operator()(std::string_view key, bool& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
     if (!n) return;
     auto v = n->value_exact<bool>();
     if (!v) type_error(key, *n, "true or false");
     field = *v;
   }
-  void operator()(std::string_view key, std::string& field, std::string_view) const {
+  void operator()(std::string_view key, std::string& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
     if (!n) return;
     auto v = n->value_exact<std::string>();
@@ -84,7 +85,7 @@ struct Reader {
   // A named choice: the name turned into its enum here, once (scene/options.hpp).
   template <class E>
     requires is_option_v<E>
-  void operator()(std::string_view key, E& field, std::string_view) const {
+  void operator()(std::string_view key, E& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
     if (!n) return;
     auto v = n->value_exact<std::string>();
@@ -97,7 +98,7 @@ struct Reader {
 struct KeyLister {
   std::vector<std::string>* keys;
   template <class T>
-  void operator()(std::string_view key, T&, std::string_view) const {
+  void operator()(std::string_view key, T&, const FieldInfo&) const {
     keys->emplace_back(key);
   }
 };
@@ -197,25 +198,11 @@ namespace {
 
 struct TomlWriter {
   std::ostringstream* out;
-  void operator()(std::string_view key, const std::string& v, std::string_view) const {
-    *out << key << " = " << toml::value<std::string>(v) << "\n";
-  }
-  void operator()(std::string_view key, bool v, std::string_view) const {
-    *out << key << " = " << (v ? "true" : "false") << "\n";
-  }
-  template <class E>
-    requires is_option_v<E>
-  void operator()(std::string_view key, E v, std::string_view) const {
-    *out << key << " = " << toml::value<std::string>(std::string(option_name(v))) << "\n";
-  }
-  void operator()(std::string_view key, double v, std::string_view unit) const {
-    *out << key << " = " << toml::value<double>(v);
-    if (!unit.empty()) *out << "  # " << unit;
+  template <class T>
+  void operator()(std::string_view key, const T& v, const FieldInfo& info) const {
+    *out << key << " = " << toml_value(v);
+    if (!info.unit.empty()) *out << "  # " << info.unit;
     *out << "\n";
-  }
-  template <class I>
-  void operator()(std::string_view key, I v, std::string_view) const {
-    *out << key << " = " << v << "\n";
   }
 };
 

@@ -1,10 +1,12 @@
 #pragma once
 // Scene settings: one plain struct per TOML section, defaults from the paper (Xu & Yu 1997,
-// Table 1), the unit of every field beside it. `visit_fields` lists each section's keys once, so
-// the loader, the resolved-scene writer and the tests all see the same names.
+// Table 1), the unit of every field beside it. `visit_fields` lists each section's keys once with
+// their unit, range and help, so the loader, the validator, the resolved-scene writer, `fluidbed
+// keys` and the tests all see the same names.
 #include <cstdint>
 #include <string>
 
+#include "scene/field_info.hpp"
 #include "scene/options.hpp"
 
 namespace fluidbed {
@@ -160,103 +162,137 @@ struct Settings {
   int threads = 1;
 };
 
-// v(key, field, unit) for every field of a section, in file order.
+// v(key, field, info) for every field of a section, in file order: the one table of the scene's
+// keys. The loader reads by it, the validator checks its ranges, the resolved-scene writer,
+// `fluidbed keys` and the man page print it (info: unit, range, help; scene/field_info.hpp).
 template <class V>
 void visit_fields(SceneInfo& s, V&& v) {
-  v("name", s.name, "");
-  v("kind", s.kind, "");
-  v("description", s.description, "");
+  using namespace ranges;
+  v("name", s.name, {"", any, "the scene's name, in titles and reports"});
+  v("kind", s.kind, {"", any, "what the run measures on top of dp and overlaps"});
+  v("description", s.description, {"", any, "free text about the scene"});
 }
 template <class V>
 void visit_fields(DomainSettings& s, V&& v) {
-  v("width", s.width, "m");
-  v("height", s.height, "m");
-  v("thickness", s.thickness, "m");
-  v("top_wall", s.top_wall, "");
+  using namespace ranges;
+  v("width", s.width, {"m", positive, "x extent of the bed (left wall at x = 0)"});
+  v("height", s.height, {"m", positive, "y extent of the bed (bottom wall at y = 0)"});
+  v("thickness", s.thickness, {"m", positive, "z extent of the slab, at least one diameter"});
+  v("top_wall", s.top_wall, {"", any, "a rigid wall at y = height (the paper's bed is open)"});
 }
 template <class V>
 void visit_fields(ParticleSettings& s, V&& v) {
-  v("count", s.count, "");
-  v("diameter", s.diameter, "m");
-  v("density", s.density, "kg/m^3");
-  v("placement", s.placement, "");
-  v("seed", s.seed, "");
-  v("fill_height", s.fill_height, "m");
-  v("x", s.x, "m");
-  v("y", s.y, "m");
-  v("vx", s.vx, "m/s");
-  v("vy", s.vy, "m/s");
-  v("spin", s.spin, "rad/s");
-  v("state_file", s.state_file, "");
-  v("packing_time", s.packing_time, "s");
-  v("packing_scene", s.packing_scene, "");
-  v("frozen", s.frozen, "");
+  using namespace ranges;
+  v("count", s.count, {"", at_least(1), "number of spheres"});
+  v("diameter", s.diameter, {"m", positive, "sphere diameter d"});
+  v("density", s.density, {"kg/m^3", positive, "density of the spheres' material"});
+  v("placement", s.placement, {"", any, "where the particles start"});
+  v("seed", s.seed, {"", non_negative, "random numbers of the lattice placement"});
+  v("fill_height", s.fill_height,
+    {"m", non_negative, "lattice cells only below this height (0: the whole domain)"});
+  v("x", s.x, {"m", any, "\"single\" placement: x of the particle"});
+  v("y", s.y, {"m", any, "\"single\" placement: y of the particle"});
+  v("vx", s.vx, {"m/s", any, "\"single\" placement: x velocity"});
+  v("vy", s.vy, {"m/s", any, "\"single\" placement: y velocity"});
+  v("spin", s.spin, {"rad/s", any, "\"single\" placement: angular velocity about z"});
+  v("state_file", s.state_file,
+    {"", any, "\"state\" placement: the state file, relative to the scene file"});
+  v("packing_time", s.packing_time,
+    {"s", positive, "\"packed\" placement: how long the lattice start falls"});
+  v("packing_scene", s.packing_scene,
+    {"", any, "\"packed\" placement: a scene that makes the packing instead (empty: this one)"});
+  v("frozen", s.frozen, {"", any, "held in place: a fixed bed the gas flows through"});
 }
 template <class V>
 void visit_fields(ContactSettings& s, V&& v) {
-  v("stiffness", s.stiffness, "N/m");
-  v("tangential_stiffness_ratio", s.tangential_stiffness_ratio, "");
-  v("damping", s.damping, "kg/s");
-  v("tangential_damping_ratio", s.tangential_damping_ratio, "");
-  v("friction", s.friction, "");
-  v("displacement", s.displacement, "");
-  v("skin", s.skin, "");
+  using namespace ranges;
+  v("stiffness", s.stiffness, {"N/m", positive, "normal spring constant kappa_n"});
+  v("tangential_stiffness_ratio", s.tangential_stiffness_ratio,
+    {"", non_negative, "kappa_t / kappa_n (the paper: 1)"});
+  v("damping", s.damping, {"kg/s", non_negative, "normal damping coefficient eta_n"});
+  v("tangential_damping_ratio", s.tangential_damping_ratio,
+    {"", non_negative, "eta_t / eta_n (the paper: 1)"});
+  v("friction", s.friction, {"", non_negative, "Coulomb friction gamma, particles and walls"});
+  v("displacement", s.displacement, {"", any, "how the contact displacements are found"});
+  v("skin", s.skin,
+    {"", non_negative, "neighbour-list skin as a fraction of the largest diameter (speed only)"});
 }
 template <class V>
 void visit_fields(TimeSettings& s, V&& v) {
-  v("dt", s.dt, "s");
-  v("end", s.end, "s");
-  v("integrator", s.integrator, "");
+  using namespace ranges;
+  v("dt", s.dt, {"s", positive, "particle time step"});
+  v("end", s.end, {"s", non_negative, "simulated time of a run (--until overrides it)"});
+  v("integrator", s.integrator, {"", any, "the particles' time integrator"});
 }
 template <class V>
 void visit_fields(PhysicsSettings& s, V&& v) {
-  v("gravity", s.gravity, "m/s^2");
+  using namespace ranges;
+  v("gravity", s.gravity, {"m/s^2", any, "gravitational acceleration along -y"});
 }
 template <class V>
 void visit_fields(DiagnosticsSettings& s, V&& v) {
-  v("output_interval", s.output_interval, "s");
-  v("averaging_start", s.averaging_start, "s");
-  v("overlap_limit", s.overlap_limit, "");
-  v("save_state", s.save_state, "");
+  using namespace ranges;
+  v("output_interval", s.output_interval, {"s", positive, "one timeseries row per interval"});
+  v("averaging_start", s.averaging_start,
+    {"s", non_negative, "start of the means (tau_1 of eq 30) and of \"after start-up\""});
+  v("overlap_limit", s.overlap_limit,
+    {"", unit_fraction, "overlap ratio taken as a runaway: the run fails"});
+  v("save_state", s.save_state,
+    {"", any, "write the final state to this file, relative to --out (empty: none)"});
 }
 
 template <class V>
 void visit_fields(GasSettings& s, V&& v) {
-  v("enabled", s.enabled, "");
-  v("density", s.density, "kg/m^3");
-  v("viscosity", s.viscosity, "Pa s");
-  v("cells_x", s.cells_x, "");
-  v("cells_y", s.cells_y, "");
-  v("tolerance", s.tolerance, "");
-  v("max_iterations", s.max_iterations, "");
-  v("preconditioner_refresh", s.preconditioner_refresh, "");
+  using namespace ranges;
+  v("enabled", s.enabled, {"", any, "solve the gas (a [gas] section sets it unless it says false)"});
+  v("density", s.density, {"kg/m^3", positive, "gas density (air)"});
+  v("viscosity", s.viscosity, {"Pa s", positive, "gas dynamic viscosity (air)"});
+  v("cells_x", s.cells_x, {"", at_least(3), "gas cells across the width (the paper: 10 mm)"});
+  v("cells_y", s.cells_y, {"", at_least(3), "gas cells up the height (the paper: 20 mm)"});
+  v("tolerance", s.tolerance, {"", positive, "SIMPLE: mass residual relative to the inflow"});
+  v("max_iterations", s.max_iterations, {"", at_least(1), "SIMPLE iterations per gas step"});
+  v("preconditioner_refresh", s.preconditioner_refresh,
+    {"", non_negative, "pressure factorization rebuilt past this coefficient change (speed only)"});
 }
 template <class V>
 void visit_fields(InletSettings& s, V&& v) {
-  v("kind", s.kind, "");
-  v("superficial_velocity", s.superficial_velocity, "m/s");
-  v("jet_width", s.jet_width, "m");
-  v("jets", s.jets, "");
+  using namespace ranges;
+  v("kind", s.kind, {"", any, "what the bottom of the bed lets in"});
+  v("superficial_velocity", s.superficial_velocity,
+    {"m/s", non_negative, "gas velocity U, the mean over the bottom"});
+  v("jet_width", s.jet_width, {"m", positive, "width of each jet's slot"});
+  v("jets", s.jets, {"", at_least(1), "jet slots, one every width / jets"});
 }
 template <class V>
 void visit_fields(CouplingSettings& s, V&& v) {
-  v("pressure_gradient_force", s.pressure_gradient_force, "");
-  v("particle_steps_per_gas_step", s.particle_steps_per_gas_step, "");
+  using namespace ranges;
+  v("pressure_gradient_force", s.pressure_gradient_force,
+    {"", any, "model A: particles feel -V grad p besides drag (false: the paper's printed form)"});
+  v("particle_steps_per_gas_step", s.particle_steps_per_gas_step,
+    {"", at_least(1), "the gas is solved every this many particle steps (or sooner, by CFL)"});
 }
 
 template <class V>
 void visit_fields(BubbleSection& s, V&& v) {
-  v("threshold", s.threshold, "");
-  v("min_diameter", s.min_diameter, "m");
-  v("interval", s.interval, "s");
-  v("slug_fraction", s.slug_fraction, "");
-  v("cell_size", s.cell_size, "m");
-  v("window", s.window, "m");
-  v("min_track_frames", s.min_track_frames, "");
-  v("eruption_gap", s.eruption_gap, "s");
-  v("slugging_min_fraction", s.slugging_min_fraction, "");
-  v("spouting_min_fraction", s.spouting_min_fraction, "");
-  v("bed_min_fraction", s.bed_min_fraction, "");
+  using namespace ranges;
+  v("threshold", s.threshold, {"", open_unit, "void fraction above which a fine cell is void"});
+  v("min_diameter", s.min_diameter,
+    {"m", non_negative, "smallest equivalent diameter of a bubble (0: 2 d)"});
+  v("interval", s.interval, {"s", positive, "simulated time between analysed frames"});
+  v("slug_fraction", s.slug_fraction,
+    {"", unit_fraction, "a bubble wider than this share of the bed is a slug"});
+  v("cell_size", s.cell_size, {"m", non_negative, "fine grid of the void fraction (0: d / 2)"});
+  v("window", s.window, {"m", non_negative, "side of the void fraction's sample window (0: 2.5 d)"});
+  v("min_track_frames", s.min_track_frames,
+    {"", at_least(1), "frames a bubble must be seen in to count (fewer: flicker)"});
+  v("eruption_gap", s.eruption_gap,
+    {"s", non_negative, "eruptions closer in time are one burst at the surface"});
+  v("slugging_min_fraction", s.slugging_min_fraction,
+    {"", unit_fraction, "regime \"slugging\": least share of frames with a slug"});
+  v("spouting_min_fraction", s.spouting_min_fraction,
+    {"", unit_fraction, "regime \"spouting\": least share of frames the jet is open to the top"});
+  v("bed_min_fraction", s.bed_min_fraction,
+    {"", below_one, "dense regions smaller than this share of the bed are splashes"});
 }
 
 // v(section_name, section_struct) for every section.

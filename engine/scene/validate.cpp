@@ -1,5 +1,6 @@
-// One validation pass over a scene: impossible values are refused with the key's name.
-#include <cmath>
+// One validation pass over a scene: impossible values are refused with the key's name. Each
+// number is checked against the range the field table gives it (scene/settings.hpp), then the
+// fields against each other and the geometry.
 #include <string>
 
 #include "core/errors.hpp"
@@ -12,32 +13,50 @@ namespace {
 [[noreturn]] void refuse(const std::string& key, const std::string& why) {
   throw InputError(key + " " + why);
 }
-void positive(const std::string& key, double v) {
-  if (!(v > 0.0)) refuse(key, "must be positive (got " + std::to_string(v) + ")");
+
+// Why a number is outside its field's range, in the words used for each kind of range.
+std::string out_of_range(const Range& r, double v, bool integer) {
+  const std::string got = " (got " + std::to_string(v) + ")";
+  if (!r.bounded_below() && !r.bounded_above()) return "must be finite";
+  if (!r.bounded_above() && r.low == 0.0 && !integer)
+    return r.low_open ? "must be positive" + got : "must not be negative" + got;
+  if (!r.bounded_above() && !r.low_open)
+    return "must be at least " + std::to_string(static_cast<long long>(r.low));
+  return "must be in " + r.text() + got;
 }
-void non_negative(const std::string& key, double v) {
-  if (!(v >= 0.0)) refuse(key, "must not be negative (got " + std::to_string(v) + ")");
-}
+
+// Every number against the range the field table gives it, in table order.
+struct RangeCheck {
+  std::string section;
+  void check(std::string_view key, double v, const Range& r, bool integer) const {
+    if (!r.contains(v)) refuse(section + "." + std::string(key), out_of_range(r, v, integer));
+  }
+  void operator()(std::string_view key, double v, const FieldInfo& info) const {
+    check(key, v, info.range, false);
+  }
+  void operator()(std::string_view key, int v, const FieldInfo& info) const {
+    check(key, v, info.range, true);
+  }
+  // Names, flags, paths and the seed: their type, checked by the loader, is all they need.
+  template <class T>
+  void operator()(std::string_view, const T&, const FieldInfo&) const {}
+};
+
 }  // namespace
 
 void validate(const Settings& s) {
+  Settings table = s;  // the field table's visitors take non-const references
+  visit_sections(table, [](std::string_view name, auto& section) {
+    visit_fields(section, RangeCheck{std::string(name)});
+  });
 
   const auto& d = s.domain;
-  positive("domain.width", d.width);
-  positive("domain.height", d.height);
-  positive("domain.thickness", d.thickness);
-
   const auto& p = s.particles;
-  if (p.count < 1) refuse("particles.count", "must be at least 1");
-  positive("particles.diameter", p.diameter);
-  positive("particles.density", p.density);
-  positive("particles.packing_time", p.packing_time);
   if (p.diameter > d.width || p.diameter > d.height)
     refuse("particles.diameter", "is larger than the domain");
   // The slab must hold one layer: spheres move in x-y between the front and back walls.
   if (d.thickness < p.diameter)
     refuse("domain.thickness", "must be at least particles.diameter (one layer of spheres)");
-  non_negative("particles.fill_height", p.fill_height);
   if (p.fill_height > d.height) refuse("particles.fill_height", "is above domain.height");
   if (p.placement == Placement::Lattice || p.placement == Placement::Packed) {
     const double top = p.fill_height > 0.0 ? p.fill_height : d.height;
@@ -56,63 +75,17 @@ void validate(const Settings& s) {
   if (p.placement == Placement::State && p.state_file.empty())
     refuse("particles.state_file", "is needed for placement = \"state\"");
 
-  const auto& c = s.contact;
-  positive("contact.stiffness", c.stiffness);
-  non_negative("contact.tangential_stiffness_ratio", c.tangential_stiffness_ratio);
-  non_negative("contact.damping", c.damping);
-  non_negative("contact.tangential_damping_ratio", c.tangential_damping_ratio);
-  non_negative("contact.friction", c.friction);
-  non_negative("contact.skin", c.skin);
-
-  positive("time.dt", s.time.dt);
-  non_negative("time.end", s.time.end);
-  if (!std::isfinite(s.physics.gravity)) refuse("physics.gravity", "must be finite");
-
   const auto& g = s.gas;
-  positive("gas.density", g.density);
-  positive("gas.viscosity", g.viscosity);
-  if (g.cells_x < 3) refuse("gas.cells_x", "must be at least 3");
-  if (g.cells_y < 3) refuse("gas.cells_y", "must be at least 3");
-  positive("gas.tolerance", g.tolerance);
-  if (g.max_iterations < 1) refuse("gas.max_iterations", "must be at least 1");
-  non_negative("gas.preconditioner_refresh", g.preconditioner_refresh);
   if (g.enabled) {
     // Porosity counts each sphere in the cells it straddles; the exact split assumes a sphere
     // is cut by at most one grid line each way.
     if (d.width / g.cells_x < p.diameter || d.height / g.cells_y < p.diameter)
-      refuse("gas.cells_x", "makes gas cells smaller than a particle (cells must be at least one "
-                            "particles.diameter wide and high)");
+      refuse("gas.cells_x",
+             "makes gas cells smaller than a particle (cells must be at least one "
+             "particles.diameter wide and high)");
   }
-  non_negative("inlet.superficial_velocity", s.inlet.superficial_velocity);
-  positive("inlet.jet_width", s.inlet.jet_width);
-  if (s.inlet.jets < 1) refuse("inlet.jets", "must be at least 1");
   if (s.inlet.jet_width * s.inlet.jets > d.width)
     refuse("inlet.jet_width", "times inlet.jets is wider than domain.width");
-  if (s.coupling.particle_steps_per_gas_step < 1)
-    refuse("coupling.particle_steps_per_gas_step", "must be at least 1");
-
-  const BubbleSection& b = s.bubbles;
-  if (!(b.threshold > 0.0 && b.threshold < 1.0))
-    refuse("bubbles.threshold", "must be in (0, 1) (got " + std::to_string(b.threshold) + ")");
-  non_negative("bubbles.min_diameter", b.min_diameter);
-  positive("bubbles.interval", b.interval);
-  if (!(b.slug_fraction > 0.0 && b.slug_fraction <= 1.0))
-    refuse("bubbles.slug_fraction", "must be in (0, 1]");
-  non_negative("bubbles.cell_size", b.cell_size);
-  non_negative("bubbles.window", b.window);
-  if (b.min_track_frames < 1) refuse("bubbles.min_track_frames", "must be at least 1");
-  non_negative("bubbles.eruption_gap", b.eruption_gap);
-  if (!(b.slugging_min_fraction > 0.0 && b.slugging_min_fraction <= 1.0))
-    refuse("bubbles.slugging_min_fraction", "must be in (0, 1]");
-  if (!(b.spouting_min_fraction > 0.0 && b.spouting_min_fraction <= 1.0))
-    refuse("bubbles.spouting_min_fraction", "must be in (0, 1]");
-  if (!(b.bed_min_fraction >= 0.0 && b.bed_min_fraction < 1.0))
-    refuse("bubbles.bed_min_fraction", "must be in [0, 1)");
-
-  positive("diagnostics.output_interval", s.diagnostics.output_interval);
-  non_negative("diagnostics.averaging_start", s.diagnostics.averaging_start);
-  if (!(s.diagnostics.overlap_limit > 0.0 && s.diagnostics.overlap_limit <= 1.0))
-    refuse("diagnostics.overlap_limit", "must be in (0, 1]");
 }
 
 }  // namespace fluidbed

@@ -56,3 +56,21 @@ TEST(Cli, RunWritesSummaryAndTimeseries) {
   EXPECT_NE(csv.find("contacts"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(dir / "scene.toml"));
 }
+
+TEST(Cli, VersionNamesTheProjectVersionAndCommit) {
+  const CommandResult r = run_fluidbed("--version", "version");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("fluidbed " + std::string(FLUIDBED_VERSION) + " (commit ", 0), 0u) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  // The commit the sources are at, as git tells it here ("unknown" outside a checkout).
+  std::string head;
+  if (FILE* git = ::popen(("git -C " + std::string(FLUIDBED_SOURCE_DIR) +
+                           " rev-parse HEAD 2>/dev/null").c_str(), "r")) {
+    char buf[128];
+    while (std::fgets(buf, sizeof buf, git) != nullptr) head += buf;
+    if (::pclose(git) != 0) head.clear();
+  }
+  while (!head.empty() && (head.back() == '\n' || head.back() == ' ')) head.pop_back();
+  if (head.empty()) head = "unknown";
+  EXPECT_NE(r.out.find("(commit " + head), std::string::npos) << r.out << " expected " << head;
+}

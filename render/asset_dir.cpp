@@ -1,0 +1,33 @@
+#include "render/asset_dir.hpp"
+
+#include <cstdlib>
+#include <system_error>
+
+namespace fluidbed::render {
+
+std::string source_asset_dir() {
+  return FLUIDBED_SOURCE_ASSET_DIR;
+}
+
+std::string find_asset_dir(const char* env, const std::filesystem::path& program) {
+  if (env != nullptr && *env != '\0') return env;
+  if (!program.empty()) {
+    // FLUIDBED_INSTALLED_ASSET_DIR is the share folder relative to the installed program's
+    // folder (CMake's install layout, e.g. "../share/fluidbed").
+    const std::filesystem::path share = program.parent_path() / FLUIDBED_INSTALLED_ASSET_DIR;
+    std::error_code ec;
+    if (std::filesystem::is_directory(share / "scenes", ec)) {
+      const std::filesystem::path clean = std::filesystem::weakly_canonical(share, ec);
+      return (ec ? share : clean).string();
+    }
+  }
+  return source_asset_dir();
+}
+
+std::string asset_dir() {
+  std::error_code ec;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return find_asset_dir(std::getenv("FLUIDBED_ASSETS"), ec ? std::filesystem::path() : program);
+}
+
+}  // namespace fluidbed::render
