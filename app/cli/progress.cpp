@@ -20,8 +20,12 @@ void print_progress(const Simulation& sim, double wall, double until) {
 }  // namespace
 
 RunResult run_with_progress(Simulation& sim, double until,
-                            std::function<void(const Simulation&)> on_step, bool bubbles) {
+                            std::function<void(const Simulation&)> on_step, bool bubbles,
+                            std::function<void(const TimeseriesRow&)> on_row,
+                            std::function<bool()> stop) {
   RunOptions opt;
+  opt.on_row = std::move(on_row);
+  opt.stop = std::move(stop);
   opt.until = until;
   opt.bubbles = bubbles;
   opt.on_step = std::move(on_step);

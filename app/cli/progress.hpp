@@ -10,8 +10,11 @@ namespace fluidbed::app {
 
 // run_simulation to `until` (s), `on_step` after every step (may be empty), with the bubble
 // analysis when `bubbles`.
+// on_row and stop: RunOptions' (run/run.hpp).
 RunResult run_with_progress(Simulation& sim, double until,
                             std::function<void(const Simulation&)> on_step = {},
-                            bool bubbles = false);
+                            bool bubbles = false,
+                            std::function<void(const TimeseriesRow&)> on_row = {},
+                            std::function<bool()> stop = {});
 
 }  // namespace fluidbed::app

@@ -9,10 +9,12 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "core/errors.hpp"
 #include "output/frames.hpp"
 #include "output/plots.hpp"
+#include "run/live_folder.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
 #include "scene/scene_loader.hpp"
@@ -72,13 +74,32 @@ int run_command(const RunArgs& a) {
       if (pictures) pictures->observe(x);
       if (tracks) tracks->observe(x);
     };
-  const RunResult r = run_with_progress(sim, until, on_step, a.bubbles);
-  const FrameStats picture_stats = pictures ? pictures->finish() : FrameStats{};
-  write_run_outputs(out, r);
+  // The folder says what the run is doing while it runs (run/live_folder.hpp), and an
+  // interrupt (SIGINT, SIGTERM) stops it at the end of a step.
+  LiveRunFolder live(out, s.scene.name, a.bubbles);
   {
     std::ofstream scene_out(std::filesystem::path(out) / "scene.toml");
     scene_out << "# the scene as run, every value resolved\n" << to_toml(s);
   }
+  const InterruptGuard interrupts;
+  RunResult r;
+  try {
+    r = run_with_progress(sim, until, on_step, a.bubbles, [&](const TimeseriesRow& row) { live.row(row); },
+                          [] { return InterruptGuard::received() != 0; });
+  } catch (const SimulationFailure& e) {
+    live.failed(e.what());
+    throw;
+  }
+  if (!r.completed) {
+    const std::string why = std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
+    live.interrupted(sim.time(), why);
+    std::fprintf(stderr, "interrupted at t = %.6g s (%s): the timeseries so far is in %s/timeseries.csv, no summary.json\n",
+                 sim.time(), why.c_str(), out.c_str());
+    return 130;
+  }
+  const FrameStats picture_stats = pictures ? pictures->finish() : FrameStats{};
+  write_run_outputs(out, r);
+  live.completed(sim.time());
   if (!s.diagnostics.save_state.empty())
     sim.save_state((std::filesystem::path(out) / s.diagnostics.save_state).string());
   std::printf("%s: %lld steps of %zu particles to t = %.4g s in %.3g s wall (%.3g particle-steps/s)\n",

@@ -66,10 +66,18 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   };
 
   check_start(sim);
+  std::size_t rows_handed = 0;
+  RunResult result;
   while (sim.steps() < last_step) {
     sim.step();
     if (recorder.after_step(sim)) check_gas_step(sim, options);
+    if (options.on_row)
+      for (; rows_handed < recorder.rows().size(); ++rows_handed) options.on_row(recorder.rows()[rows_handed]);
     if (options.on_step) options.on_step(sim);
+    if (options.stop && options.stop()) {
+      result.completed = false;
+      break;
+    }
     if (options.progress && (sim.steps() & 255) == 0) {
       const double w = wall_now();
       if (w >= next_progress) {
@@ -78,7 +86,6 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
       }
     }
   }
-  RunResult result;
   result.summary = recorder.summary(sim, wall_now());
   result.dp_spectrum = recorder.dp_spectrum();
   result.rows = recorder.take_rows();
@@ -90,34 +97,39 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   return result;
 }
 
+std::string timeseries_header(bool bubbles) {
+  std::string h =
+      "t,dp,max_overlap_ratio,max_wall_overlap_ratio,kinetic_energy,contacts,pair_contacts,"
+      "wall_contacts,simple_iterations,mass_residual,max_cfl,fluid_force_y,e_kinetic,e_rotation,"
+      "e_potential,e_spring_n,e_spring_t,w_gas,e_dashpot,e_friction,e_residual";
+  return h + (bubbles ? ",bubbles,regime\n" : "\n");
+}
+
+std::string timeseries_line(const TimeseriesRow& row, bool bubbles) {
+  char line[256];
+  std::snprintf(line, sizeof line, "%.9g,%.9g,%.6g,%.6g,%.9g,%d,%d,%d,%d,%.3g,%.4g,%.6g", row.t,
+                row.dp, row.max_overlap_ratio, row.max_wall_overlap_ratio, row.kinetic_energy,
+                row.pair_contacts + row.wall_contacts, row.pair_contacts, row.wall_contacts,
+                row.simple_iterations, row.mass_residual, row.max_cfl, row.fluid_force_y);
+  std::string csv = line;
+  const EnergyBudget& e = row.energy;
+  std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g",
+                e.kinetic_translation, e.kinetic_rotation, e.potential, e.spring_normal,
+                e.spring_tangential, e.gas_work, e.dashpot, e.friction, e.residual);
+  csv += line;
+  if (bubbles) {
+    std::snprintf(line, sizeof line, ",%d,%s", row.bubbles, to_string(row.regime));
+    csv += line;
+  }
+  return csv + "\n";
+}
+
 void write_run_outputs(const std::string& dir, const RunResult& r) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError("cannot create output folder " + dir + ": " + ec.message());
-  std::string csv =
-      "t,dp,max_overlap_ratio,max_wall_overlap_ratio,kinetic_energy,contacts,pair_contacts,"
-      "wall_contacts,simple_iterations,mass_residual,max_cfl,fluid_force_y,e_kinetic,e_rotation,"
-      "e_potential,e_spring_n,e_spring_t,w_gas,e_dashpot,e_friction,e_residual";
-  csv += r.bubbles ? ",bubbles,regime\n" : "\n";
-  char line[256];
-  for (const auto& row : r.rows) {
-    std::snprintf(line, sizeof line, "%.9g,%.9g,%.6g,%.6g,%.9g,%d,%d,%d,%d,%.3g,%.4g,%.6g",
-                  row.t, row.dp, row.max_overlap_ratio, row.max_wall_overlap_ratio,
-                  row.kinetic_energy, row.pair_contacts + row.wall_contacts, row.pair_contacts,
-                  row.wall_contacts, row.simple_iterations, row.mass_residual, row.max_cfl,
-                  row.fluid_force_y);
-    csv += line;
-    const EnergyBudget& e = row.energy;
-    std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g",
-                  e.kinetic_translation, e.kinetic_rotation, e.potential, e.spring_normal,
-                  e.spring_tangential, e.gas_work, e.dashpot, e.friction, e.residual);
-    csv += line;
-    if (r.bubbles) {
-      std::snprintf(line, sizeof line, ",%d,%s", row.bubbles, to_string(row.regime));
-      csv += line;
-    }
-    csv += "\n";
-  }
+  std::string csv = timeseries_header(r.bubbles);
+  for (const auto& row : r.rows) csv += timeseries_line(row, r.bubbles);
   const std::filesystem::path d(dir);
   write_file_atomically((d / "timeseries.csv").string(), [&](std::ostream& o) { o << csv; });
   if (r.dp_spectrum.ok)

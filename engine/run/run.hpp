@@ -28,9 +28,15 @@ struct RunOptions {
   double porosity_min = 0.3;
   // The bubble analysis beside the run ([bubbles]: bubbles.csv, mixing.csv, summary `bubbles`).
   bool bubbles = false;
+  // Called with every timeseries row as soon as it is recorded (the run folder's live
+  // timeseries.csv, run/live_folder.hpp).
+  std::function<void(const TimeseriesRow&)> on_row;
+  // Asked after every step: true ends the run there, unfinished (an interrupt).
+  std::function<bool()> stop;
 };
 
 struct RunResult {
+  bool completed = true;  // false: stopped early by RunOptions::stop (the summary is not a result)
   nlohmann::json summary;
   std::vector<TimeseriesRow> rows;
   bool bubbles = false;              // the rows carry the bubble columns
@@ -45,5 +51,9 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options);
 // Writes DIR/summary.json and DIR/timeseries.csv (each complete or not at all), and
 // DIR/dp_spectrum.csv, DIR/bubbles.csv and DIR/mixing.csv when the run has them.
 void write_run_outputs(const std::string& dir, const RunResult& r);
+
+// timeseries.csv's header (with the bubble columns or not) and one row of it, '\n' included.
+std::string timeseries_header(bool bubbles);
+std::string timeseries_line(const TimeseriesRow& row, bool bubbles);
 
 }  // namespace fluidbed

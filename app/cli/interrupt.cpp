@@ -1,0 +1,40 @@
+#include "cli/interrupt.hpp"
+
+#include <atomic>
+#include <csignal>
+
+namespace fluidbed::app {
+namespace {
+
+// A signal handler can only reach state of static duration; a lock-free atomic is safe to set
+// from it.
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
+
+extern "C" void on_signal(int s) { g_signal.store(s, std::memory_order_relaxed); }
+
+struct sigaction g_old_int, g_old_term;
+
+}  // namespace
+
+InterruptGuard::InterruptGuard() {
+  g_signal.store(0);
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, &g_old_int);
+  sigaction(SIGTERM, &sa, &g_old_term);
+}
+
+InterruptGuard::~InterruptGuard() {
+  sigaction(SIGINT, &g_old_int, nullptr);
+  sigaction(SIGTERM, &g_old_term, nullptr);
+}
+
+int InterruptGuard::received() { return g_signal.load(std::memory_order_relaxed); }
+
+const char* InterruptGuard::name(int signal) {
+  return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal";
+}
+
+}  // namespace fluidbed::app
