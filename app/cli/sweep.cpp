@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "studies/study.hpp"
 #include "output/plots.hpp"
 #include "run/sweep.hpp"
 #include "scene/scene_loader.hpp"
@@ -34,14 +35,16 @@ std::vector<double> parse_velocities(const std::string& list) {
 }  // namespace
 
 void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene) {
-  std::string csv = "branch,u_superficial,dp_mean,dp_std,status,wall_time_s\n";
+  std::string csv = "branch,u_superficial,dp_mean,dp_std,status,wall_time_s,failure\n";
   char line[256];
   nlohmann::json points = nlohmann::json::array();
   auto add = [&](const SweepPoint& p) {
-    std::snprintf(line, sizeof line, "%s,%.4f,%.6g,%.6g,%s,%.3f\n", p.branch.c_str(), p.u,
-                  p.ok ? p.dp_mean : 0.0, p.ok ? p.dp_std : 0.0, p.ok ? "ok" : "failed",
-                  p.wall_time);
+    const bool run = p.ok || p.error.rfind("not run", 0) != 0;
+    std::snprintf(line, sizeof line, "%s,%.4f,%.6g,%.6g,%s,%.3f,", p.branch.c_str(), p.u,
+                  p.ok ? p.dp_mean : 0.0, p.ok ? p.dp_std : 0.0,
+                  p.ok ? "ok" : run ? "failed" : "not_run", p.wall_time);
     csv += line;
+    csv += study::csv_text(p.error) + "\n";
     points.push_back({{"branch", p.branch}, {"u_superficial", p.u}, {"ok", p.ok},
                       {"dp_mean", p.dp_mean}, {"dp_std", p.dp_std}, {"error", p.error},
                       {"wall_time_s", p.wall_time}});

@@ -173,12 +173,28 @@ void plot_sweep(const std::string& path, const SweepResult& r, const std::string
   };
   chart::Series up = branch(r.up, "increasing U (from the packed bed)");
   std::vector<SweepPoint> down = r.down;
-  if (!r.up.empty()) down.push_back(r.up.back());  // the shared top run closes the branch
+  for (auto it = r.up.rbegin(); it != r.up.rend(); ++it)
+    if (it->ok) {  // the shared top run, where the decreasing branch starts, closes it
+      down.push_back(*it);
+      break;
+    }
   chart::Series dn = branch(down, "decreasing U (from the run above)");
   dn.dashed = true;
   dn.filled = false;
   dn.shape = chart::Shape::Square;
   c.series = {up, dn};
+  chart::Series failed;  // runs that failed, on the axis (sweep.csv gives each one's reason)
+  failed.label = "failed run (sweep.csv: why)";
+  failed.mark = chart::Mark::Points;
+  failed.shape = chart::Shape::Triangle;
+  failed.colour = chart::Rgb{200, 30, 30};
+  for (const auto* branch_points : {&r.up, &r.down})
+    for (const auto& p : *branch_points)
+      if (!p.ok && p.error.rfind("not run", 0) != 0) {
+        failed.x.push_back(p.u);
+        failed.y.push_back(0.0);
+      }
+  if (!failed.x.empty()) c.series.push_back(failed);
   c.hlines.push_back({r.bed_weight_per_area, "bed weight / area", {90, 90, 90}, true, 1.5});
   if (r.umf.ok) {
     char label[64];

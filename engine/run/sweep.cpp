@@ -6,7 +6,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <atomic>
+#include <memory>
 #include <mutex>
+#include <thread>
 #include <numbers>
 #include <numeric>
 
@@ -106,31 +109,51 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
     o.log(line);
   };
 
-  // The top velocity first: it starts the decreasing chain. One worker then walks the chain
-  // down while the others take the independent increasing runs.
-  result.up[n - 1] = run_point(scene, o, "up", o.velocities[n - 1], "");
-  report(result.up[n - 1]);
+  // The decreasing chain starts from the highest velocity whose run finishes: one worker takes
+  // the increasing runs from the top down until one does, then walks the chain down, each run
+  // from the lowest finished run above it (a failed run is a row with its reason, and the chain
+  // goes on from the run above it). The other workers take the remaining increasing runs from the
+  // bottom up. Each increasing run is claimed once (0 free, 1 running, 2 done).
+  std::unique_ptr<std::atomic<int>[]> state(new std::atomic<int>[n]);
+  for (std::size_t k = 0; k < n; ++k) state[k] = 0;
+  auto run_up = [&](std::size_t k) {
+    int expected = 0;
+    if (!state[k].compare_exchange_strong(expected, 1)) return false;
+    result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
+    report(result.up[k]);
+    state[k] = 2;
+    return true;
+  };
   auto down_chain = [&] {
-    const SweepPoint* from = &result.up[n - 1];
-    for (std::size_t k = n - 1; k-- > 0;) {
-      if (!from->ok) {
-        result.down[k].branch = "down";
-        result.down[k].u = o.velocities[k];
-        result.down[k].error = "the run above it failed";
-        continue;
+    std::size_t top = n;  // the highest finished increasing run
+    for (std::size_t k = n; k-- > 0;) {
+      if (!run_up(k))
+        while (state[k].load() != 2) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (result.up[k].ok) {
+        top = k;
+        break;
       }
+    }
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      result.down[k].branch = "down";
+      result.down[k].u = o.velocities[k];
+    }
+    if (top == n) {
+      for (auto& d : result.down) d.error = "not run: no increasing run finished";
+      return;
+    }
+    for (std::size_t k = top; k + 1 < n; ++k)
+      result.down[k].error = "not run: above the highest velocity whose run finished";
+    const SweepPoint* from = &result.up[top];
+    for (std::size_t k = top; k-- > 0;) {
       result.down[k] = run_point(scene, o, "down", o.velocities[k], from->state_path);
       report(result.down[k]);
-      from = &result.down[k];
+      if (result.down[k].ok) from = &result.down[k];
     }
   };
   // The chain first, so that one worker walks it while the others share the increasing runs.
   std::vector<std::function<void()>> tasks = {down_chain};
-  for (std::size_t k = 0; k + 1 < n; ++k)
-    tasks.push_back([&, k] {
-      result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
-      report(result.up[k]);
-    });
+  for (std::size_t k = 0; k + 1 < n; ++k) tasks.push_back([&, k] { run_up(k); });
   RunPool(o.threads).run(tasks);
 
   // Umf from the decreasing branch, with the shared top point.
@@ -140,10 +163,12 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
       us.push_back(p.u);
       dps.push_back(p.dp_mean);
     }
-  if (result.up[n - 1].ok) {
-    us.push_back(result.up[n - 1].u);
-    dps.push_back(result.up[n - 1].dp_mean);
-  }
+  for (std::size_t k = n; k-- > 0;)  // the chain's start: the highest finished increasing run
+    if (result.up[k].ok) {
+      us.push_back(result.up[k].u);
+      dps.push_back(result.up[k].dp_mean);
+      break;
+    }
   result.umf = fit_umf(us, dps);
   constexpr double kPi = std::numbers::pi;
   const double d = scene.particles.diameter;

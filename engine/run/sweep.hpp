@@ -1,7 +1,9 @@
 #pragma once
 // The paper's velocity sweep (Fig. 6). Increasing branch: each velocity starts from the packed
 // bed. Decreasing branch: each velocity starts from the final state (particles, contacts and gas)
-// of the run at the next higher velocity; the highest velocity's run is shared by both branches.
+// of the lowest finished run above it; it begins at the highest velocity whose increasing run
+// finished, which both branches share (a bed blown out of the top at the highest velocities
+// still gets its decreasing branch, from below them).
 // The mean pressure drop of each run is eq 30 over its settled part. Runs of the increasing
 // branch are independent and run in parallel; the decreasing chain runs beside them.
 #include <cstdint>

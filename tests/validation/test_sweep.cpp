@@ -71,3 +71,49 @@ TEST(Sweep, BranchOrderAndStateHandOver) {
   for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(r1.up[k].dp_mean, r.up[k].dp_mean);
   for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(r1.down[k].end_hash, r.down[k].end_hash);
 }
+
+TEST(Sweep, DecreasingBranchStartsFromTheHighestFinishedRun) {
+  // At 1000 and 1200 m/s the first gas step's CFL number is far above 1: both runs fail. The
+  // decreasing branch then starts from 1.5 m/s, the highest run that finished.
+  Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml",
+                          {"particles.placement=lattice", "particles.count=150",
+                           "particles.fill_height=0.08", "inlet.kind=uniform"});
+  SweepOptions o;
+  o.velocities = {0.5, 1.0, 1.5, 1000.0, 1200.0};
+  o.run_time = 0.006;
+  o.averaging_start = 0.003;
+  o.threads = 2;
+  o.out_dir = fluidbed::testing::temp_dir("sweep-fail").string();
+  const SweepResult r = run_sweep(s, o);
+  ASSERT_EQ(r.up.size(), 5u);
+  ASSERT_EQ(r.down.size(), 4u);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_TRUE(r.up[k].ok) << r.up[k].error;
+  for (std::size_t k = 3; k < 5; ++k) {
+    EXPECT_FALSE(r.up[k].ok);
+    EXPECT_NE(r.up[k].error.find("CFL"), std::string::npos) << r.up[k].error;
+  }
+  EXPECT_TRUE(r.down[1].ok) << r.down[1].error;
+  EXPECT_TRUE(r.down[0].ok) << r.down[0].error;
+  EXPECT_EQ(r.down[1].start_hash, r.up[2].end_hash);  // 1.0 from where 1.5 ended
+  EXPECT_EQ(r.down[0].start_hash, r.down[1].end_hash);
+  for (std::size_t k = 2; k < 4; ++k) {
+    EXPECT_FALSE(r.down[k].ok);
+    EXPECT_EQ(r.down[k].error.rfind("not run", 0), 0u) << r.down[k].error;
+  }
+
+  // The command line: sweep.csv has every run, the failed ones with their reason.
+  const auto dir = fluidbed::testing::temp_dir("sweep-fail-cli");
+  const auto c = fluidbed::testing::run_fluidbed(
+      "sweep " + std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml --velocities 0.5,1.0,1000 "
+      "--run-time 0.006 --averaging-start 0.003 --set particles.placement=lattice "
+      "--set particles.count=150 --set particles.fill_height=0.08 --set inlet.kind=uniform --out " +
+          dir.string(),
+      "sweep-fail-cli");
+  ASSERT_EQ(c.status, 0) << c.err;
+  const std::string csv = fluidbed::testing::read_file(dir / "sweep.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "branch,u_superficial,dp_mean,dp_std,status,wall_time_s,failure");
+  EXPECT_NE(csv.find("up,1000.0000,0,0,failed,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("CFL"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("down,0.5000,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",not_run,"), std::string::npos) << csv;
+}
