@@ -189,7 +189,7 @@ std::string findings(const std::vector<FormResult>& forms, Size size) {
      << "; both from the same packed bed. Bed weight per area "
      << fmt("%.0f Pa", forms[0].sweep.bed_weight_per_area) << ".\n\n"
      << "| model | U_mf, decreasing branch | U_mf, fixed bed (force = weight) | plateau / weight | "
-        "dp std / mean at 2.8 m/s | dp period at 2.8 m/s | bed surface at the end |\n"
+        "dp std / mean at 2.8 m/s | dp cycle at 2.8 m/s (regular: period) | bed surface at the end |\n"
         "|---|---|---|---|---|---|---|\n";
   for (const auto& f : forms) {
     const double w = f.sweep.bed_weight_per_area;
@@ -198,7 +198,10 @@ std::string findings(const std::vector<FormResult>& forms, Size size) {
        << " | " << (std::isfinite(f.fixed_umf) ? fmt("%.3f m/s", f.fixed_umf) : "failed: " + f.fixed_error)
        << " | " << (f.sweep.umf.ok ? fmt("%.2f", f.sweep.umf.plateau / w) : "-") << " | "
        << fmt("%.2f", json_number(f.at28, "dp_std_pa") / json_number(f.at28, "dp_mean_pa")) << " | "
-       << fmt("%.3g s", json_number(f.at28, "dp_dominant_period_s")) << " | "
+       << (std::isfinite(json_number(f.at28, "dp_dominant_period_s"))
+               ? fmt("%.3g s", json_number(f.at28, "dp_dominant_period_s"))
+               : fmt("none (peak %.3g s)", json_number(f.at28, "dp_peak_period_s")))
+       << " | "
        << fmt("%.3f m", json_number(f.at28, "bed_height_m")) << " |\n";
   }
   md << "\nThe paper reports U_mf = 1.8 m/s (Wen-Yu 1.77) and a plateau at the bed's weight.\n";
