@@ -15,6 +15,7 @@
 #include "output/plots.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
+#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace fluidbed::app {
@@ -45,6 +46,7 @@ std::vector<int> parse_ids(const std::string& list, std::size_t count) {
 
 int run_command(const RunArgs& a) {
   Settings s = load_scene(a.scene, a.overrides);
+  refuse_unsafe_scene(s);
   s.threads = a.threads;
   const std::string out = a.out.empty() ? default_out(a.scene) : a.out;
   prepare_packed_bed(s);

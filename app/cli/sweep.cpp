@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "output/plots.hpp"
 #include "run/sweep.hpp"
+#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace fluidbed::app {
@@ -79,6 +80,7 @@ void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std:
 
 int sweep_command(const SweepArgs& a) {
   const Settings s = load_scene(a.scene, a.overrides);
+  refuse_unsafe_scene(s);
   SweepOptions o;
   if (!a.velocities.empty()) o.velocities = parse_velocities(a.velocities);
   o.run_time = a.run_time;
