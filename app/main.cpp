@@ -12,7 +12,7 @@
 #include "cli/study.hpp"
 #include "cli/view.hpp"
 #include "core/errors.hpp"
-#include "scene/checks.hpp"
+#include "sim/checks.hpp"
 
 namespace {
 

@@ -10,8 +10,8 @@
 #include "cli/progress.hpp"
 #include "core/errors.hpp"
 #include "run/packed_bed.hpp"
-#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed::app {

@@ -17,8 +17,8 @@
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "io/liggghts_export.hpp"
-#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 namespace fluidbed::app {
 namespace {

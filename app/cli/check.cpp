@@ -1,10 +1,10 @@
 // fluidbed check SCENE [--set ...]: the scene's derived figures, warnings and refusals, nothing
-// run (scene/checks.hpp). Exit 0 when the scene would run (warnings allowed), 2 when refused.
+// run (sim/checks.hpp). Exit 0 when the scene would run (warnings allowed), 2 when refused.
 #include <cstdio>
 
 #include "cli/commands.hpp"
-#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 namespace fluidbed::app {
 

@@ -16,8 +16,8 @@
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
 #include "run/sweep.hpp"
-#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 #include "sim/simulation.hpp"
 #include "studies/study.hpp"
 

@@ -15,8 +15,8 @@
 #include "output/plots.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
-#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 namespace fluidbed::app {
 namespace {

@@ -10,8 +10,8 @@
 #include "core/errors.hpp"
 #include "output/plots.hpp"
 #include "run/sweep.hpp"
-#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 namespace fluidbed::app {
 namespace {

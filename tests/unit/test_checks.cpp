@@ -10,8 +10,8 @@
 
 #include "../test_support.hpp"
 #include "core/errors.hpp"
-#include "scene/checks.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 using namespace fluidbed;
 using namespace fluidbed::testing;

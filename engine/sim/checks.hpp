@@ -30,7 +30,7 @@ struct SceneFigures {
 };
 
 // The integrator study's measured limits for one integrator, as multiples of the sphere-wall
-// contact duration t_c (scene/checks.cpp says where they were measured).
+// contact duration t_c (sim/checks.cpp says where they were measured).
 struct StepLimits {
   double accurate = 0.0;        // the largest step whose drop-test error stayed under 5 %
   double largest_stable = 0.0;  // the largest step measured stable

@@ -1,4 +1,4 @@
-#include "scene/checks.hpp"
+#include "sim/checks.hpp"
 
 #include <algorithm>
 #include <cmath>
