@@ -12,6 +12,7 @@
 #include "cli/study.hpp"
 #include "cli/view.hpp"
 #include "core/errors.hpp"
+#include "sim/checks.hpp"
 
 namespace {
 
@@ -161,6 +162,14 @@ int main(int argc, char** argv) {
   study->add_option("--jobs", study_args.jobs, "points at once (default: one per core)")
       ->check(CLI::NonNegativeNumber);
 
+  fluidbed::app::CheckArgs check_args;
+  auto* check = app.add_subcommand(
+      "check", "inspect a scene: derived figures, warnings and refusals, nothing run");
+  check->add_option("scene", check_args.scene, "scene file (TOML)")->required();
+  check->add_option("--set", check_args.overrides, "override a scene value: section.key=value")
+      ->take_all()
+      ->allow_extra_args(false);
+
   auto* keys = app.add_subcommand("keys", "every scene key: default, unit, range and help");
   keys->add_option("section", keys_args.section, "only this section (e.g. contact)");
   keys->add_option("--format", keys_args.format,
@@ -202,12 +211,14 @@ int main(int argc, char** argv) {
     if (*exporter) return fluidbed::app::export_command(export_args);
     if (*study) return fluidbed::app::study_command(study_args);
     if (*view) return fluidbed::app::view_command(view_args);
+    if (*check) return fluidbed::app::check_command(check_args);
     if (*keys) return fluidbed::app::keys_command(keys_args, command_docs(app));
   } catch (const fluidbed::InputError& e) {
     std::cerr << "fluidbed: error: " << e.what() << "\n";
     return 2;
   } catch (const fluidbed::SimulationFailure& e) {
-    std::cerr << "fluidbed: the simulation failed: " << e.what() << "\n";
+    std::cerr << "fluidbed: the simulation failed: " << e.what() << fluidbed::failure_hint()
+              << "\n";
     return 3;
   } catch (const std::runtime_error& e) {
     // Pictures or files that could not be made (no GL context, ffmpeg failed).

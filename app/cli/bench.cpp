@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "run/packed_bed.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed::app {
@@ -68,6 +69,7 @@ nlohmann::json spread(std::vector<double> v) {
 int bench_command(const RunArgs& a) {
   const std::string scene = a.scene.empty() ? asset_dir() + "/scenes/packing.toml" : a.scene;
   Settings s = load_scene(scene, a.overrides);
+  refuse_unsafe_scene(s);
   s.threads = a.threads;
   prepare_packed_bed(s);
   const double until = a.until >= 0.0 ? a.until : s.time.end;

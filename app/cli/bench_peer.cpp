@@ -18,6 +18,7 @@
 #include "core/errors.hpp"
 #include "io/liggghts_export.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -152,6 +153,7 @@ int bench_peer_command(const RunArgs& a, const std::string& peer) {
     throw InputError("--peer \"" + peer + "\": unknown peer; known: liggghts");
   const std::string scene = a.scene.empty() ? asset_dir() + "/scenes/packing.toml" : a.scene;
   Settings s = load_scene(scene, a.overrides);
+  refuse_unsafe_scene(s);
   if (s.particles.placement == Placement::Packed)
     throw InputError(
         "bench --peer liggghts: particles.placement \"packed\": the deck makes the packing "

@@ -55,7 +55,13 @@ struct ReproduceArgs {
   int threads = 1;
 };
 
+struct CheckArgs {
+  std::string scene;
+  std::vector<std::string> overrides;
+};
+
 int run_command(const RunArgs& a);
+int check_command(const CheckArgs& a);
 int bench_command(const RunArgs& a);
 int sweep_command(const SweepArgs& a);
 int reproduce_command(const ReproduceArgs& a);

@@ -17,6 +17,7 @@
 #include "run/run.hpp"
 #include "run/sweep.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 #include "sim/simulation.hpp"
 #include "studies/study.hpp"
 
@@ -197,6 +198,9 @@ int reproduce_command(const ReproduceArgs& a) {
   so.log = log;
   const double averaging = a.quick ? 0.5 : 1.0;
 
+  // Every scene refused before the first step, not after the runs before it.
+  for (const char* name : {"xu_yu_1997.toml", "ideal.toml"})
+    refuse_unsafe_scene(load_scene(scenes + name, a.overrides));
   // 1. The paper's bed at 2.8 m/s (Figs 8, 12-13, 15), tracking particles from the jet region.
   log("== the paper's bed at U = 2.8 m/s");
   Settings paper = load_scene(scenes + "xu_yu_1997.toml", a.overrides);

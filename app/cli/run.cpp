@@ -18,6 +18,7 @@
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -47,6 +48,7 @@ std::vector<int> parse_ids(const std::string& list, std::size_t count) {
 
 int run_command(const RunArgs& a) {
   Settings s = load_scene(a.scene, a.overrides);
+  refuse_unsafe_scene(s);
   s.threads = a.threads;
   const std::string out = a.out.empty() ? default_out(a.scene) : a.out;
   prepare_packed_bed(s);

@@ -12,6 +12,7 @@
 #include "output/plots.hpp"
 #include "run/sweep.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -82,6 +83,7 @@ void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std:
 
 int sweep_command(const SweepArgs& a) {
   const Settings s = load_scene(a.scene, a.overrides);
+  refuse_unsafe_scene(s);
   SweepOptions o;
   if (!a.velocities.empty()) o.velocities = parse_velocities(a.velocities);
   o.run_time = a.run_time;

@@ -13,6 +13,7 @@
 #include "render/gl_context.hpp"
 #include "render/renderer.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 #include "view/engine.hpp"
 #include "view/script.hpp"
 #include "view/script_runner.hpp"
@@ -125,6 +126,7 @@ int view_command(const ViewArgs& a) {
       a.run_like.scene.empty() ? asset_dir() + "/scenes/teaching.toml" : a.run_like.scene;
   if (!std::filesystem::exists(scene)) throw InputError("cannot read the scene " + scene);
   Settings s = load_scene(scene, a.run_like.overrides);
+  refuse_unsafe_scene(s);
   s.threads = a.run_like.threads;
   const std::vector<ScriptLine> script =
       a.script.empty() ? std::vector<ScriptLine>{} : load_view_script(a.script);

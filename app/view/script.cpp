@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -149,10 +150,7 @@ std::vector<ScriptLine> parse_view_script(const std::string& text, const std::st
 }
 
 std::vector<ScriptLine> load_view_script(const std::string& path) {
-  std::error_code ec;
-  std::ifstream in(path);
-  if (!in || !std::filesystem::is_regular_file(path, ec))
-    throw InputError("cannot read the script " + path);
+  std::ifstream in = open_input_file(path, "script", std::ios::in);
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError("cannot read the script " + path);

@@ -6,6 +6,7 @@
 #include "core/atomic_file.hpp"
 #include "core/binary_io.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "dem/dem_solver.hpp"
 
 namespace fluidbed {
@@ -80,8 +81,7 @@ void save_state_file(const std::string& path, const DemState& s) {
 }
 
 DemState load_state_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot read state file " + path);
+  std::ifstream in = open_input_file(path, "state file");
   return read_state(in, path);
 }
 

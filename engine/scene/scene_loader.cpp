@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "scene/toml_value.hpp"
 #include <algorithm>
 
@@ -185,8 +186,7 @@ Settings parse_scene(const std::string& toml_text, const std::string& origin,
 }
 
 Settings load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot read scene file " + path);
+  std::ifstream in = open_input_file(path, "scene file");
   std::stringstream text;
   text << in.rdbuf();
   Settings s = parse_scene(text.str(), path, overrides);

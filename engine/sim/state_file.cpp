@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/binary_io.hpp"
+#include "core/input_file.hpp"
 
 namespace fluidbed {
 namespace {
@@ -39,8 +40,7 @@ void save_simulation_state(const std::string& path, const StateFile& f) {
 }
 
 StateFile load_simulation_state(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot read state file " + path);
+  std::ifstream in = open_input_file(path, "state file");
   StateFile f;
   f.dem = read_state(in, path);
   char tag[sizeof kGasTag];

@@ -1,0 +1,198 @@
+#include "sim/checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <numbers>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "dem/contact_law.hpp"
+
+namespace fluidbed {
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+// Measured by `fluidbed study integrators --out DIR` (app/studies/accuracy.cpp; DIR/summary.md
+// and DIR/study.csv), full size, steps of 0.1 to 13.5 x t_c / 9 with t_c the sphere-wall contact
+// duration: every integrator (predictor-corrector, velocity Verlet, symplectic Euler) is stable
+// up to 2 x t_c / 9 = 0.222 t_c and unstable from 2.5 x t_c / 9 = 0.278 t_c (the undamped
+// packing of 2400 spheres at rest gains energy: its highest contact frequency, several contacts
+// on a sphere, passes omega dt = 2 there); 13.5 x t_c / 9 = 1.5 t_c fails for all three. The drop
+// test's error after 10 bounces stays under 5 % up to 1.75 x t_c / 9 (at most 4.7 %, at 1.5x)
+// and is 10-24 % at 2x. `--size tiny` agrees: stable at 2x, unstable at 3x.
+StepLimits measured_step_limits(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::Newmark:
+    case Integrator::VelocityVerlet:
+    case Integrator::SymplecticEuler:
+      break;  // the same limits for all three, as measured
+  }
+  return {1.75 / 9.0, 2.0 / 9.0, 2.5 / 9.0};
+}
+
+double wen_yu_umf(double d, double rho_p, double rho_g, double mu, double g) {
+  const double ar = d * d * d * rho_g * (rho_p - rho_g) * g / (mu * mu);
+  if (!(ar > 0.0)) return 0.0;  // particles no heavier than the gas, or no gravity
+  const double re = std::sqrt(33.7 * 33.7 + 0.0408 * ar) - 33.7;
+  return re * mu / (rho_g * d);
+}
+
+SceneCheck check_scene(const Settings& s) {
+  SceneCheck c;
+  SceneFigures& f = c.figures;
+  const auto& p = s.particles;
+  const double d = p.diameter, k = s.contact.stiffness, eta = s.contact.damping;
+  f.particle_mass = p.density * std::numbers::pi * d * d * d / 6.0;
+  f.contact_duration_wall = contact_duration(k, f.particle_mass);
+  f.contact_duration_pair = contact_duration(k, 0.5 * f.particle_mass);
+  f.dt_over_tc_wall = s.time.dt / f.contact_duration_wall;
+  f.dt_over_tc_pair = s.time.dt / f.contact_duration_pair;
+  f.restitution_wall = restitution_from_damping(k, eta, f.particle_mass);
+  f.restitution_pair = restitution_from_damping(k, eta, 0.5 * f.particle_mass);
+  f.weight_per_area =
+      p.count * f.particle_mass * s.physics.gravity / (s.domain.width * s.domain.thickness);
+
+  const StepLimits lim = measured_step_limits(s.time.integrator);
+  const std::string integrator = option_string(s.time.integrator);
+  const double tc = f.contact_duration_wall;
+  const std::string step = "time.dt = " + fmt("%.4g s", s.time.dt) + " is " +
+                           fmt("%.3g", f.dt_over_tc_wall) +
+                           " x the contact duration t_c = " + fmt("%.4g s", tc) +
+                           " (pi sqrt(m / kappa), sphere on a wall)";
+  const auto at = [&](double share) {
+    return fmt("%.3g t_c", share) + " = " + fmt("%.3g s", share * tc);
+  };
+  if (f.dt_over_tc_wall >= lim.unstable) {
+    c.refusals.push_back(step + ": beyond the stability limit of " + integrator +
+                         " (`fluidbed study integrators` measured it unstable from " +
+                         at(lim.unstable) + ", the largest stable step " + at(lim.largest_stable) +
+                         ")");
+  } else if (f.dt_over_tc_wall > lim.largest_stable) {
+    c.warnings.push_back(step + ": past the largest step measured stable, " +
+                         at(lim.largest_stable) + " (unstable from " + at(lim.unstable) +
+                         ", `fluidbed study integrators`)");
+  } else if (f.dt_over_tc_wall > lim.accurate) {
+    c.warnings.push_back(step + ": past " + at(lim.accurate) +
+                         ", beyond which the drop test's error "
+                         "after 10 bounces passes 5 % (`fluidbed study integrators`)");
+  }
+  if (f.restitution_wall == 0.0)
+    c.warnings.push_back("contact.damping = " + fmt("%g kg/s", eta) +
+                         " overdamps a sphere on a wall (restitution 0): contacts do not rebound");
+
+  if (!s.gas.enabled) return c;
+  f.gas = true;
+  const auto& in = s.inlet;
+  const auto& g = s.gas;
+  switch (in.kind) {
+    case InletKind::Jet:
+      f.jet_velocity = in.superficial_velocity * s.domain.width / (in.jets * in.jet_width);
+      break;
+    case InletKind::Uniform:
+      f.jet_velocity = in.superficial_velocity;
+      break;
+    case InletKind::None:
+      f.jet_velocity = 0.0;
+      break;
+  }
+  f.archimedes = d * d * d * g.density * (p.density - g.density) * s.physics.gravity /
+                 (g.viscosity * g.viscosity);
+  f.umf_wen_yu = wen_yu_umf(d, p.density, g.density, g.viscosity, s.physics.gravity);
+  const double dx = s.domain.width / g.cells_x, dy = s.domain.height / g.cells_y;
+  f.cell_dx_over_d = dx / d;
+  f.cell_dy_over_d = dy / d;
+  f.gas_dt = s.time.dt * s.coupling.particle_steps_per_gas_step;
+  f.gas_cfl_at_jet = f.jet_velocity * f.gas_dt / std::min(dx, dy);
+  // The run stops when a gas step's CFL number passes 1 (run/run.hpp); a gas step that would
+  // pass 0.8 is taken early, but never sooner than every particle step.
+  const double cfl_one_step = f.jet_velocity * s.time.dt / std::min(dx, dy);
+  if (cfl_one_step > 1.0)
+    c.warnings.push_back("the gas CFL number at the jet velocity " +
+                         fmt("%.3g m/s", f.jet_velocity) + " is " + fmt("%.3g", cfl_one_step) +
+                         " even with the gas solved every particle step (time.dt = " +
+                         fmt("%.3g s", s.time.dt) + "): the run stops where it passes 1");
+  return c;
+}
+
+std::string describe_check(const Settings& s, const SceneCheck& c) {
+  const SceneFigures& f = c.figures;
+  const StepLimits lim = measured_step_limits(s.time.integrator);
+  std::ostringstream o;
+  auto line = [&](const std::string& name, const std::string& value) {
+    o << "  " << name << std::string(name.size() < 34 ? 34 - name.size() : 1, ' ') << value << "\n";
+  };
+  o << s.scene.name << ": " << s.particles.count << " particles of "
+    << fmt("%g mm", 1e3 * s.particles.diameter) << ", " << option_string(s.time.integrator)
+    << ", time.dt = " << fmt("%.4g s", s.time.dt) << "\n";
+  line("particle mass m", fmt("%.4g kg", f.particle_mass) + " (rho pi d^3 / 6)");
+  line("contact duration, wall (m)",
+       fmt("%.4g s", f.contact_duration_wall) + " (pi sqrt(m / kappa_n))");
+  line("contact duration, pair (m / 2)", fmt("%.4g s", f.contact_duration_pair));
+  line("dt / t_c, wall", fmt("%.3g", f.dt_over_tc_wall) +
+                             " (t_c / dt = " + fmt("%.3g", 1.0 / f.dt_over_tc_wall) + ")");
+  line("dt / t_c, pair", fmt("%.3g", f.dt_over_tc_pair));
+  line("largest stable dt (measured)",
+       fmt("%.3g t_c", lim.largest_stable) + " = " +
+           fmt("%.3g s", lim.largest_stable * f.contact_duration_wall));
+  line("unstable dt (measured)", fmt("%.3g t_c", lim.unstable) + " = " +
+                                     fmt("%.3g s", lim.unstable * f.contact_duration_wall));
+  line("accurate dt (drop error < 5 %)", fmt("%.3g t_c", lim.accurate) + " = " +
+                                             fmt("%.3g s", lim.accurate * f.contact_duration_wall));
+  line("restitution, wall", fmt("%.4g", f.restitution_wall) + " (from contact.damping)");
+  line("restitution, pair", fmt("%.4g", f.restitution_pair));
+  line("bed weight per area W/A",
+       fmt("%.4g Pa", f.weight_per_area) + " (N m g / (width thickness))");
+  if (f.gas) {
+    line("jet velocity",
+         fmt("%.4g m/s", f.jet_velocity) +
+             (s.inlet.kind == InletKind::Jet ? " (U width / (jets jet_width))" : ""));
+    line("U_mf, Wen-Yu", fmt("%.3g m/s", f.umf_wen_yu) +
+                             " (Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7, Ar = " +
+                             fmt("%.3g", f.archimedes) + "; eps_mf about 0.4 implied)");
+    if (s.inlet.kind != InletKind::None && f.umf_wen_yu > 0.0)
+      line("U / U_mf", fmt("%.3g", s.inlet.superficial_velocity / f.umf_wen_yu));
+    line("gas cell / d",
+         fmt("%.3g", f.cell_dx_over_d) + " wide, " + fmt("%.3g", f.cell_dy_over_d) + " high");
+    line("gas step dt_gas",
+         fmt("%.4g s", f.gas_dt) + " (time.dt x coupling.particle_steps_per_gas_step)");
+    line("gas CFL at the jet velocity", fmt("%.3g", f.gas_cfl_at_jet) +
+                                            " (u_jet dt_gas / min(dx, dy); "
+                                            "a gas step past 0.8 is taken early)");
+  } else {
+    line("gas", "none");
+  }
+  for (const auto& w : c.warnings) o << "warning: " << w << "\n";
+  for (const auto& r : c.refusals) o << "refused: " << r << "\n";
+  if (c.warnings.empty() && c.refusals.empty()) o << "no warnings\n";
+  return o.str();
+}
+
+namespace {
+std::mutex hint_mutex;
+std::string hint;  // the first warning of the last scene checked before a run
+}  // namespace
+
+void refuse_unsafe_scene(const Settings& s) {
+  const SceneCheck c = check_scene(s);
+  {
+    const std::lock_guard lock(hint_mutex);
+    hint = c.warnings.empty() ? std::string() : c.warnings.front();
+  }
+  if (!c.refusals.empty()) throw InputError(c.refusals.front() + " (see: fluidbed check)");
+}
+
+std::string failure_hint() {
+  const std::lock_guard lock(hint_mutex);
+  return hint.empty() ? std::string() : "; likely cause: " + hint;
+}
+
+}  // namespace fluidbed
