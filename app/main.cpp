@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
   sweep->add_option("--velocities", sweep_args.velocities,
-                    "superficial velocities in m/s: 0.5,1.0,... (default: 23 from 0.5 to 3.2)");
+                    "superficial velocities in m/s: 0.5,1.0,... (default: the paper's 23 from 0.5 to 3.2, scaled by the scene's Wen-Yu U_mf over the paper's)");
   sweep->add_option("--run-time", sweep_args.run_time, "simulated seconds per velocity (1.5)");
   sweep->add_option("--averaging-start", sweep_args.averaging_start,
                     "seconds into each run where the mean (eq 30) starts (0.5)");

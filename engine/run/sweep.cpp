@@ -17,6 +17,7 @@
 #include "core/run_pool.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
+#include "sim/checks.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed {
@@ -72,10 +73,45 @@ std::vector<double> default_sweep_velocities() {
   return v;
 }
 
+double terminal_velocity(const Settings& scene) {
+  constexpr double kPi = std::numbers::pi;
+  const double d = scene.particles.diameter, rho_g = scene.gas.density;
+  const double weight =
+      (scene.particles.density - rho_g) * scene.physics.gravity * kPi * d * d * d / 6.0;
+  auto excess_drag = [&](double u) {
+    const double re = rho_g * u * d / scene.gas.viscosity;
+    const double cd = std::pow(0.63 + 4.8 / std::sqrt(re), 2.0);
+    return cd * 0.5 * rho_g * u * u * kPi * d * d / 4.0 - weight;
+  };
+  if (!(weight > 0.0)) return INFINITY;
+  double lo = 1e-9, hi = 1e4;  // m/s: drag below the weight at lo, above it at hi
+  for (int k = 0; k < 200 && hi - lo > 1e-9 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (excess_drag(mid) < 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+std::vector<double> default_sweep_velocities(const Settings& scene) {
+  auto umf_of = [](const Settings& s) {
+    return wen_yu_umf(s.particles.diameter, s.particles.density, s.gas.density, s.gas.viscosity,
+                      s.physics.gravity);
+  };
+  const double umf = umf_of(scene), paper = umf_of(Settings{});
+  const double scale = umf > 0.0 && paper > 0.0 ? umf / paper : 1.0;
+  const double cap = 0.8 * terminal_velocity(scene);
+  std::vector<double> v;
+  for (double u : default_sweep_velocities()) {
+    const double x = std::round(100.0 * u * scale) / 100.0;
+    if (x > 0.0 && x < cap && (v.empty() || x > v.back())) v.push_back(x);
+  }
+  return v;
+}
+
 SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) {
   SweepOptions o = options;
   Settings scene = sweep_scene;
-  if (o.velocities.empty()) o.velocities = default_sweep_velocities();
+  if (o.velocities.empty()) o.velocities = default_sweep_velocities(scene);
   if (o.out_dir.empty()) throw InputError("sweep: an output folder is needed");
   if (!scene.gas.enabled) throw InputError("sweep: the scene has no [gas] section");
   if (!(o.run_time > 0.0)) throw InputError("sweep: the run time must be positive");

@@ -17,7 +17,7 @@
 namespace fluidbed {
 
 struct SweepOptions {
-  std::vector<double> velocities;  // m/s, superficial; empty: default_sweep_velocities()
+  std::vector<double> velocities;  // m/s, superficial; empty: default_sweep_velocities(scene)
   double run_time = 2.0;           // s, simulated per velocity
   double averaging_start = 0.5;    // s into each run: tau_1 of eq 30
   int threads = 2;                 // runs at once
@@ -45,6 +45,15 @@ struct SweepResult {
 
 // 23 velocities from 0.5 to 3.2 m/s, denser around 1.4-2.2 m/s (the paper's 23 runs).
 std::vector<double> default_sweep_velocities();
+// The same list for `scene`'s particles and gas: scaled by the scene's Wen-Yu U_mf over the
+// paper's (1.77 m/s; the paper's bed gets the paper's list), rounded to 0.01 m/s, and only
+// velocities below 0.8 of a single sphere's terminal velocity (beyond it the gas carries
+// particles out of the top; for spheres u_t is 8 or more times Wen-Yu's U_mf, so the list's top,
+// 1.8 U_mf, stays below it and the cap only guards).
+std::vector<double> default_sweep_velocities(const Settings& scene);
+// A single sphere's terminal velocity in the scene's gas (m/s): its weight less buoyancy equals
+// the Di Felice drag at porosity 1, C_d = (0.63 + 4.8 / sqrt(Re))^2 (model.md).
+double terminal_velocity(const Settings& scene);
 
 // Throws InputError for bad options; failed runs are recorded, not thrown.
 SweepResult run_sweep(const Settings& scene, const SweepOptions& options);

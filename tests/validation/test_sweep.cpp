@@ -9,6 +9,7 @@
 #include "run/sweep.hpp"
 #include "analysis/umf_fit.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 using namespace fluidbed;
 
@@ -116,4 +117,29 @@ TEST(Sweep, DecreasingBranchStartsFromTheHighestFinishedRun) {
   EXPECT_NE(csv.find("CFL"), std::string::npos) << csv;
   EXPECT_NE(csv.find("down,0.5000,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",not_run,"), std::string::npos) << csv;
+}
+
+TEST(Sweep, DefaultVelocitiesFollowTheScenesParticles) {
+  // The paper's bed: the paper's 23 velocities exactly.
+  const Settings paper = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml");
+  EXPECT_EQ(default_sweep_velocities(paper), default_sweep_velocities());
+  // 4 mm glass in air: the terminal velocity by hand. At u = 16 m/s, Re = 1.205 16 0.004 / 1.8e-5
+  // = 4285, C_d = (0.63 + 4.8 / 65.46)^2 = 0.4950, drag 0.4950 x 0.5 x 1.205 x 256 x 1.2566e-5 N
+  // = 9.59e-4 N against the weight less buoyancy 8.876e-4 N: u_t a little below 16 m/s.
+  const double ut = terminal_velocity(paper);
+  EXPECT_GT(ut, 14.5);
+  EXPECT_LT(ut, 16.0);
+  // Lighter particles (1350 kg/m^3): Wen-Yu's U_mf falls (Ar halves), and the list with it.
+  Settings light = paper;
+  light.particles.density = 1350.0;
+  const auto v = default_sweep_velocities(light);
+  const double umf_ratio = wen_yu_umf(0.004, 1350.0, 1.205, 1.8e-5, 9.81) /
+                           wen_yu_umf(0.004, 2700.0, 1.205, 1.8e-5, 9.81);
+  ASSERT_EQ(v.size(), 23u);
+  EXPECT_NEAR(v.back(), 3.2 * umf_ratio, 0.006);
+  EXPECT_NEAR(v.front(), 0.5 * umf_ratio, 0.006);
+  // The top of the list (1.8 U_mf) stays far below the terminal velocity: for spheres u_t / U_mf
+  // is 8 or more by these correlations, so the 0.8 u_t cap only guards.
+  EXPECT_LT(v.back(), 0.25 * terminal_velocity(light));
+  EXPECT_LT(default_sweep_velocities(paper).back(), 0.25 * ut);
 }
