@@ -6,7 +6,6 @@
 #include <sstream>
 #include <utility>
 
-
 #include "core/errors.hpp"
 #include "core/hash.hpp"
 #include "core/threads.hpp"
@@ -67,11 +66,10 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   block_ledger_.assign(particle_blocks(n), EnergyLedger{});
   double dmax = 0.0;
   for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
-  list_.configure(width_, height_, dmax, d.skin * dmax, n);
+  skin_ = d.skin * dmax;
+  list_.configure(width_, height_, dmax, skin_, n);
   state_.particles = std::move(particles);
   overlap_.assign(n, 0.0);
-  wall_active_.assign(n, 0);
-  wall_ended_.assign(n, 0);
   state_.walls.resize(n, static_cast<int>(walls_.size()));
   // Newmark and Verlet carry the last acceleration; at rest with no contacts it is gravity.
   auto& p = state_.particles;
@@ -90,7 +88,7 @@ void DemSolver::set_state(DemState s) {
                      " walls but the scene has " + std::to_string(walls_.size()));
   state_ = std::move(s);
   list_.import_history(state_.pairs);
-  list_.build(state_.particles);
+  rebuild();
   state_.pairs.clear();
 }
 
@@ -221,14 +219,15 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
   // Block by block (thread ranges are whole blocks), so that each block's share of the gas's
   // work over the step, at the velocities the contacts see, is summed on the way.
   for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk) {
-    const std::size_t i0 = std::max(b, blk * kParticleBlock), i1 = std::min(e, (blk + 1) * kParticleBlock);
+    const std::size_t i0 = std::max(b, blk * kParticleBlock),
+                      i1 = std::min(e, (blk + 1) * kParticleBlock);
     double gas = 0.0;
     for (std::size_t i = i0; i < i1; ++i) {
       double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
       gas += P.ext_fx[i] * vx[i] + P.ext_fy[i] * vy[i];
       for (std::int32_t q = gb[i]; q < gb[i + 1]; ++q) {
         const std::int32_t c = gl[q];
-        const std::int32_t k = c ^ (c >> 31);              // ~c for the entries stored negated
+        const std::int32_t k = c ^ (c >> 31);  // ~c for the entries stored negated
         const double sign = static_cast<double>(1 | (c >> 31));  // -1 there: x + (-1) f is x - f
         fxi += sign * lfx[k];
         fyi += sign * lfy[k];
@@ -242,43 +241,39 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
     }
     block_ledger_[blk].gas_work += gas * dtau;
   }
+  // Walls: only the particles that can reach one before the next neighbour-list build (found at
+  // each build, sorted), each wall in turn for each of them, so a particle's force is summed in
+  // the order gathered pairs, then walls 0, 1, 2, (3).
   WallHistory& wh = state_.walls;
   const int nw = static_cast<int>(walls_.size());
   const ContactParams params = params_;
-  std::int32_t* on = wall_active_.data() + b;
-  std::int32_t* off = wall_ended_.data() + b;
+  std::uint8_t* active = wh.active.data();
+  double* hdn = wh.dn.data();
+  double* hds = wh.ds.data();
+  const auto* nb = near_wall_.data();
+  const auto* ne = nb + near_wall_.size();
+  const auto* q0 = std::lower_bound(nb, ne, static_cast<std::int32_t>(b));
+  const auto* q1 = std::lower_bound(q0, ne, static_cast<std::int32_t>(e));
   double max_wall_ratio = 0.0;
   int wall_contacts = 0, sliding = 0;
-  for (int c = 0; c < nw; ++c) {
-    const Wall& wall = walls_[static_cast<std::size_t>(c)];
-    std::uint8_t* active = wh.active.data();
-    double* hdn = wh.dn.data();
-    double* hds = wh.ds.data();
-    std::size_t count = 0, ended = 0;
-    for (std::size_t i = b; i < e; ++i) {
+  BlockLedger ledger(block_ledger_.data());
+  for (const auto* q = q0; q != q1; ++q) {
+    const auto i = static_cast<std::size_t>(*q);
+    for (int c = 0; c < nw; ++c) {
+      const Wall& wall = walls_[static_cast<std::size_t>(c)];
       const std::size_t s = i * nw + c;
       const double d = wall.nx * x[i] + wall.ny * y[i] - wall.offset;
-      const int touching = d < r[i];
-      const int was = active[s];
-      const int fresh = touching & (was ^ 1);
-      on[count] = static_cast<std::int32_t>(i) ^ -fresh;  // ~i: touching for the first time
-      count += touching;
-      off[ended] = static_cast<std::int32_t>(i);  // contacts that have just ended
-      ended += was & (touching ^ 1);
-      active[s] = static_cast<std::uint8_t>(touching);
-    }
-    for (std::size_t q = 0; q < ended; ++q) {  // apart: the history is cleared
-      const std::size_t s = static_cast<std::size_t>(off[q]) * nw + c;
-      hdn[s] = hds[s] = 0.0;
-    }
-    const double nx = -wall.nx, ny = -wall.ny;  // from the particle into the wall
-    const double tx = -ny, ty = nx;
-    BlockLedger ledger(block_ledger_.data());
-    for (std::size_t q = 0; q < count; ++q) {
-      const bool fresh = on[q] < 0;
-      const std::size_t i = static_cast<std::size_t>(fresh ? ~on[q] : on[q]);
-      const std::size_t s = i * nw + c;
-      const double d = wall.nx * x[i] + wall.ny * y[i] - wall.offset;
+      if (!(d < r[i])) {  // apart: a contact that has just ended leaves no history
+        if (active[s]) {
+          active[s] = 0;
+          hdn[s] = hds[s] = 0.0;
+        }
+        continue;
+      }
+      const bool fresh = !active[s];
+      active[s] = 1;
+      const double nx = -wall.nx, ny = -wall.ny;  // from the particle into the wall
+      const double tx = -ny, ty = nx;
       const double overlap = r[i] - d;
       const double vn = vx[i] * nx + vy[i] * ny;
       const double vt = vx[i] * tx + vy[i] * ty + w[i] * r[i];
@@ -301,8 +296,8 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
       sliding += f.sliding;
       max_wall_ratio = std::max(max_wall_ratio, overlap / r[i]);
       ov[i] = std::max(ov[i], 0.5 * overlap / r[i]);
+      ++wall_contacts;
     }
-    wall_contacts += static_cast<int>(count);
   }
   acc.wall_contacts += wall_contacts;
   acc.sliding += sliding;
@@ -334,6 +329,28 @@ bool DemSolver::after_forces(std::size_t b, std::size_t e) {
   for (std::size_t i = b; i < e; ++i)
     outside |= !(x[i] >= -r[i] && x[i] <= width_ + r[i] && y[i] >= -r[i] && y[i] <= height_ + r[i]);
   return outside;
+}
+
+void DemSolver::rebuild() {
+  list_.build(state_.particles);
+  find_near_wall();
+}
+
+void DemSolver::find_near_wall() {
+  const Particles& P = state_.particles;
+  const std::size_t n = P.size();
+  const int nw = static_cast<int>(walls_.size());
+  const std::uint8_t* active = state_.walls.active.data();
+  near_wall_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    bool near = false;
+    for (int c = 0; c < nw; ++c) {
+      const Wall& wall = walls_[static_cast<std::size_t>(c)];
+      const double d = wall.nx * P.x[i] + wall.ny * P.y[i] - wall.offset;
+      near = near || d < P.radius[i] + skin_ || active[i * nw + c] != 0;
+    }
+    if (near) near_wall_.push_back(static_cast<std::int32_t>(i));
+  }
 }
 
 void DemSolver::thread_range(int t, int T, std::size_t& b, std::size_t& e) const {
@@ -368,9 +385,9 @@ template <bool Incremental>
 void DemSolver::step_particles(const RangeWork& after) {
   const double h = dt_;
   for (auto& a : partial_) a = StepPartial{};
-  // One parallel region per step: every loop over particles uses the same block split, so each
-  // particle's arrays stay in one core's cache (on a 2-core VM a loop that moves them to the
-  // other core costs more than it saves); the pairs are split where the particles are.
+    // One parallel region per step: every loop over particles uses the same block split, so each
+    // particle's arrays stay in one core's cache (on a 2-core VM a loop that moves them to the
+    // other core costs more than it saves); the pairs are split where the particles are.
 #pragma omp parallel num_threads(threads_) if (parallel_)
   {
     int t = 0, T = 1;
@@ -392,9 +409,7 @@ void DemSolver::step_particles(const RangeWork& after) {
     {
       bool stale = false;
       for (const auto& a : partial_) stale = stale || a.stale;
-      if (stale) {
-        list_.build(state_.particles);
-      }
+      if (stale) rebuild();
       if (stale || split_.size() != static_cast<std::size_t>(T) + 1) balance(T);
     }
     lap(Phase::Neighbours);
@@ -472,11 +487,16 @@ void DemSolver::finish_step() {
   if (outside_) {
     for (std::size_t i = 0; i < n; ++i) {
       const char* where = nullptr;
-      if (!std::isfinite(x[i] + y[i])) where = "has a non-finite position (NaN)";
-      else if (x[i] < -r[i]) where = "left the bed through the left wall";
-      else if (x[i] > width_ + r[i]) where = "left the bed through the right wall";
-      else if (y[i] < -r[i]) where = "left the bed through the bottom wall";
-      else if (y[i] > height_ + r[i]) where = "left the bed through the top";
+      if (!std::isfinite(x[i] + y[i]))
+        where = "has a non-finite position (NaN)";
+      else if (x[i] < -r[i])
+        where = "left the bed through the left wall";
+      else if (x[i] > width_ + r[i])
+        where = "left the bed through the right wall";
+      else if (y[i] < -r[i])
+        where = "left the bed through the bottom wall";
+      else if (y[i] > height_ + r[i])
+        where = "left the bed through the top";
       if (where) fail("particle " + std::to_string(i) + " " + where);
     }
   }
@@ -496,8 +516,8 @@ void DemSolver::finish_step() {
       os << "runaway overlap: particles " << worst_pair_i_ << " and " << worst_pair_j_
          << " overlap by " << 100.0 * diag_.max_overlap_ratio << " % of their radii sum";
     else
-      os << "runaway overlap: a particle overlaps a wall by " << 100.0 * diag_.max_wall_overlap_ratio
-         << " % of its radius";
+      os << "runaway overlap: a particle overlaps a wall by "
+         << 100.0 * diag_.max_wall_overlap_ratio << " % of its radius";
     os << " (limit " << 100.0 * overlap_limit_ << " %, diagnostics.overlap_limit)";
     fail(os.str());
   }

@@ -18,21 +18,20 @@
 
 namespace fluidbed {
 
-
 // What the particle model needs from a scene, built once from the settings
 // (sim/model_params.hpp: dem_params_for).
 struct DemParams {
-  ContactParams contact;                       // eqs 3-7
-  bool incremental = true;                     // eqs 13-17; false: the geometric overlap
+  ContactParams contact;    // eqs 3-7
+  bool incremental = true;  // eqs 13-17; false: the geometric overlap
   Integrator integrator = Integrator::Newmark;
-  double dt = 1.5e-5;                          // s
-  double gravity = 9.81;                       // m/s^2, along -y
-  double width = 0.15, height = 0.9;           // m, the box the particles must stay in
-  std::vector<Wall> walls;                     // the slab's planar walls (dem/walls.hpp)
-  double skin = 0.4;                           // neighbour-list skin, fraction of the largest diameter
-  double overlap_limit = 0.2;                  // overlap ratio treated as a runaway
-  bool frozen = false;                         // a fixed bed: nothing moves
-  int threads = 1;                             // inside a step; 0: one per core
+  double dt = 1.5e-5;                 // s
+  double gravity = 9.81;              // m/s^2, along -y
+  double width = 0.15, height = 0.9;  // m, the box the particles must stay in
+  std::vector<Wall> walls;            // the slab's planar walls (dem/walls.hpp)
+  double skin = 0.4;                  // neighbour-list skin, fraction of the largest diameter
+  double overlap_limit = 0.2;         // overlap ratio treated as a runaway
+  bool frozen = false;                // a fixed bed: nothing moves
+  int threads = 1;                    // inside a step; 0: one per core
 };
 
 // Everything that defines where a run is: saved and loaded bit-exactly. The pair history lives
@@ -42,7 +41,7 @@ struct DemState {
   Particles particles;
   PairContacts pairs;
   WallHistory walls;
-  double time = 0.0;       // s
+  double time = 0.0;  // s
   std::int64_t step = 0;
 };
 
@@ -53,7 +52,7 @@ struct StepDiagnostics {
   int pair_contacts = 0;
   int wall_contacts = 0;
   int sliding_contacts = 0;
-  double kinetic_energy = 0.0;          // J, translation and rotation
+  double kinetic_energy = 0.0;  // J, translation and rotation
 };
 
 // The work of the forces that the mechanical energy does not hold, summed step by step since the
@@ -61,7 +60,8 @@ struct StepDiagnostics {
 // kinetic, potential and spring energies of the state (analysis/energy_budget.hpp) it closes the
 // particles' energy budget; what it leaves over is the integration error.
 struct EnergyLedger {
-  double gas_work = 0.0;  // J, done on the particles by the gas (ext_fx, ext_fy: drag, pressure gradient)
+  // J, done on the particles by the gas (ext_fx, ext_fy: drag, pressure gradient)
+  double gas_work = 0.0;
   double dashpot = 0.0;   // J, dissipated by the normal and tangential dashpots (>= 0)
   double friction = 0.0;  // J, dissipated by sliding contacts (>= 0)
   EnergyLedger& operator+=(const EnergyLedger& o) {
@@ -164,8 +164,14 @@ class DemSolver {
   bool parallel_ = false;  // threads_ > 1 and enough particles to pay for a fork
   StepDiagnostics diag_;
   std::vector<double> overlap_;
-  // Scratch of the wall sweeps: the particles touching a wall, those that have just left it.
-  std::vector<std::int32_t> wall_active_, wall_ended_;
+  double skin_ = 0.0;  // m, of the neighbour list
+  // The particles that can touch a wall before the next neighbour-list build, ascending: within
+  // R + skin of a wall at the build (they move less than skin / 2 until the next), or touching
+  // one then (so that its history is cleared when they part).
+  std::vector<std::int32_t> near_wall_;
+  void find_near_wall();
+  // Rebuilds the neighbour list and what depends on it (the wall candidates).
+  void rebuild();
   mutable PhaseTimes times_;
   std::vector<StepPartial> partial_;  // per thread
   std::vector<double> block_ke_;      // J, per block of particles (core/threads.hpp)
@@ -174,7 +180,8 @@ class DemSolver {
   std::vector<EnergyLedger> block_ledger_;
   EnergyLedger ledger_;
   bool outside_ = false;
-  std::vector<std::size_t> split_;    // thread t's particles: [split_[t], split_[t + 1])              // a particle left the box in the last step
+  std::vector<std::size_t> split_;  // thread t's particles: [split_[t], split_[t + 1]) // a
+                                    // particle left the box in the last step
   int worst_pair_i_ = -1, worst_pair_j_ = -1;
 };
 
