@@ -39,7 +39,7 @@ void BM_NeighbourGridBuild(benchmark::State& state) {
   CellGrid grid;
   grid.configure(0.15, 0.9, 0.004);
   for (auto _ : state) {
-    grid.build(p.x, p.y);
+    grid.build(p.x, p.y, p.radius);
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(p.size()));

@@ -1,7 +1,8 @@
 #pragma once
 // Neighbour search on a uniform cell grid: a counting sort of particles into square cells at
-// least one largest diameter wide, so touching pairs lie in the same or adjacent cells. Each pair
-// is visited once (half stencil). No allocation after the first build at a given size.
+// least one largest diameter wide, so touching pairs lie in the same or adjacent cells. The
+// particles' positions and radii are copied in cell order, so the three cells of a row around a
+// particle are one contiguous run to scan. No allocation after the first build at a given size.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -19,10 +20,14 @@ class CellGrid {
     start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
   }
 
-  void build(const std::vector<double>& x, const std::vector<double>& y) {
+  void build(const std::vector<double>& x, const std::vector<double>& y,
+             const std::vector<double>& r) {
     const std::size_t n = x.size();
     cell_of_.resize(n);
-    sorted_.resize(n);
+    id_.resize(n);
+    xs_.resize(n);
+    ys_.resize(n);
+    rs_.resize(n);
     std::fill(start_.begin(), start_.end(), 0);
     for (std::size_t i = 0; i < n; ++i) {
       const int c = cell_index(x[i], y[i]);
@@ -31,48 +36,36 @@ class CellGrid {
     }
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
     cursor_.assign(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) sorted_[cursor_[cell_of_[i]]++] = static_cast<std::int32_t>(i);
-  }
-
-  // Calls f(i, j) once for every pair in the same or adjacent cells.
-  template <class F>
-  void for_each_candidate_pair(F&& f) const {
-    for (int cy = 0; cy < ny_; ++cy) {
-      for (int cx = 0; cx < nx_; ++cx) {
-        const int c = cy * nx_ + cx;
-        const int b = start_[c], e = start_[c + 1];
-        if (b == e) continue;
-        for (int a = b; a < e; ++a) {
-          const int i = sorted_[a];
-          for (int k = a + 1; k < e; ++k) f(i, sorted_[k]);
-        }
-        // Forward half of the 8 neighbours: E, and the three above.
-        const int nb[4][2] = {{cx + 1, cy}, {cx - 1, cy + 1}, {cx, cy + 1}, {cx + 1, cy + 1}};
-        for (const auto& q : nb) {
-          if (q[0] < 0 || q[0] >= nx_ || q[1] >= ny_) continue;
-          const int d = q[1] * nx_ + q[0];
-          const int db = start_[d], de = start_[d + 1];
-          for (int a = b; a < e; ++a) {
-            const int i = sorted_[a];
-            for (int k = db; k < de; ++k) f(i, sorted_[k]);
-          }
-        }
-      }
+    for (std::size_t i = 0; i < n; ++i) {
+      const int k = cursor_[cell_of_[i]]++;
+      id_[k] = static_cast<std::int32_t>(i);
+      xs_[k] = x[i];
+      ys_[k] = y[i];
+      rs_[k] = r[i];
     }
   }
 
-  // Calls f(j) for every particle in the cell of (x, y) and the 8 around it.
-  template <class F>
-  void for_each_near(double x, double y, F&& f) const {
-    const int c = cell_index(x, y);
+  // The runs of the cell-ordered arrays that hold particle i's cell and the 8 around it: one run
+  // per row, [begin[q], end[q]) for q < the returned count (at most 3).
+  int near_runs(std::size_t i, int begin[3], int end[3]) const {
+    const int c = cell_of_[i];
     const int cx = c % nx_, cy = c / nx_;
+    const int x0 = std::max(cx - 1, 0), x1 = std::min(cx + 1, nx_ - 1);
+    int runs = 0;
     for (int qy = std::max(cy - 1, 0); qy <= std::min(cy + 1, ny_ - 1); ++qy) {
       const int row = qy * nx_;
-      const int b = start_[row + std::max(cx - 1, 0)];
-      const int e = start_[row + std::min(cx + 1, nx_ - 1) + 1];  // three cells in a row are contiguous
-      for (int k = b; k < e; ++k) f(sorted_[k]);
+      begin[runs] = start_[row + x0];  // three cells in a row are contiguous
+      end[runs] = start_[row + x1 + 1];
+      ++runs;
     }
+    return runs;
   }
+
+  // In cell order: particle index, centre and radius.
+  const std::int32_t* ids() const { return id_.data(); }
+  const double* xs() const { return xs_.data(); }
+  const double* ys() const { return ys_.data(); }
+  const double* rs() const { return rs_.data(); }
 
   int nx() const { return nx_; }
   int ny() const { return ny_; }
@@ -90,7 +83,8 @@ class CellGrid {
   int nx_ = 1, ny_ = 1;
   double hx_inv_ = 1.0, hy_inv_ = 1.0;
   std::vector<int> start_, cursor_, cell_of_;
-  std::vector<std::int32_t> sorted_;
+  std::vector<std::int32_t> id_;
+  std::vector<double> xs_, ys_, rs_;
 };
 
 }  // namespace fluidbed

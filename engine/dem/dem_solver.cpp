@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/hash.hpp"
 #include "core/threads.hpp"
+#include "dem/pair_kernel.hpp"
 
 namespace fluidbed {
 
@@ -62,12 +63,14 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   // A fork costs a microsecond or two: worth it only when a step has real work.
   parallel_ = threads_ > 1 && n >= 256;
   partial_.assign(static_cast<std::size_t>(threads_), StepPartial{});
+  passed_.assign(static_cast<std::size_t>(threads_), {});
   block_ke_.assign(particle_blocks(n), 0.0);
   block_ledger_.assign(particle_blocks(n), EnergyLedger{});
   double dmax = 0.0;
   for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
   skin_ = d.skin * dmax;
-  list_.configure(width_, height_, dmax, skin_, n);
+  list_.configure(width_, height_, dmax, skin_, n, threads_);
+  near_wall_.assign(static_cast<std::size_t>(threads_), {});
   state_.particles = std::move(particles);
   overlap_.assign(n, 0.0);
   state_.walls.resize(n, static_cast<int>(walls_.size()));
@@ -88,7 +91,10 @@ void DemSolver::set_state(DemState s) {
                      " walls but the scene has " + std::to_string(walls_.size()));
   state_ = std::move(s);
   list_.import_history(state_.pairs);
-  rebuild();
+  // Built here so that the history is in place (hashes, exports) before the next step, which
+  // builds again on its threads.
+  rebuild(0, 1, 0, state_.particles.size());
+  near_threads_ = 0;
   state_.pairs.clear();
 }
 
@@ -105,160 +111,148 @@ void DemSolver::fail(const std::string& what) const {
   throw SimulationFailure(os.str());
 }
 
-// Pass 1 over candidate pairs [k0, k1): each pair's force from its history, written to its slot.
-// In two sweeps, so that neither branches on whether a pair touches (about half of the
-// candidates do, in no order a predictor could learn): the first finds the touching pairs and
-// clears the others' slots; the second computes the contact forces of the touching ones only.
-// The arithmetic is that of the contact law, in the same order.
+// Pass 1 over this thread's candidate pairs [k0, k1) (those whose first particle is in its range
+// [b, e)): the contact law of the touching ones. In three sweeps, so that none branches on
+// whether a pair touches (in no order a predictor could learn) and the arithmetic runs several
+// pairs at a time (dem/pair_kernel.hpp): which pairs touch; the touching slots listed; the
+// contact law of those into a compact scratch (kept for the particle pass), their history back
+// to the slots. A contact whose second particle belongs to a later thread is passed to it.
 template <bool Incremental>
-void DemSolver::pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPartial& acc) {
+void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
   const Particles& P = state_.particles;
   const auto a = P.arrays();
-  const double *x = a.x, *y = a.y, *vx = a.vx, *vy = a.vy, *w = a.w, *r = a.radius;
+  const PairKernelParticles pk{a.x, a.y, a.vx, a.vy, a.w, a.radius};
   NeighbourList& L = list_;
-  const std::int32_t* li = L.i.data();
-  const std::int32_t* lj = L.j.data();
-  double* ldn = L.dn.data();
-  double* lds = L.ds.data();
-  std::uint8_t* touch = L.touching.data();
-  double* lfx = L.fx.data();
-  double* lfy = L.fy.data();
-  double* lft = L.ft.data();
-  double* lratio = L.ratio.data();
+  PairSlots& S = L.slots();
+  const std::int64_t k0 = acc.k0, k1 = S.first_begin[e];
+  const std::int32_t* li = S.i.data();
+  const std::int32_t* lj = S.j.data();
+  double* ldn = S.dn.data();
+  double* lds = S.ds.data();
+  std::uint8_t* touch = S.touching.data();
+  std::uint8_t* code = L.code.data() + k0;
+  classify_pairs(pk, li, lj, k0, k1, code);
   // The touching pairs of this range: their slots, negated (~k) for those that touch for the
-  // first time (scratch: each thread writes its own range of it).
+  // first time, whose history starts from zero (scratch: each thread writes its own range).
+  // Coincident centres are no contact but an overlap of 1 (rare: a branch).
   std::int32_t* on = L.active.data() + k0;
   std::int64_t count = 0;
   double max_ratio = 0.0;
+  std::int64_t worst = -1;
   for (std::int64_t k = k0; k < k1; ++k) {
-    const int i = li[k], j = lj[k];
-    const double px = x[j] - x[i], py = y[j] - y[i];
-    const double R = r[i] + r[j];
-    const double L2 = px * px + py * py;
-    // Apart, or coincident centres (caught as an overlap of 1): not a contact. Bitwise
-    // operators and integer arithmetic throughout, so that the compiler emits no branch.
-    const int coincident = L2 <= 0.0;
-    const int touching = (L2 < R * R) & (coincident ^ 1);
-    const int fresh = touching & (touch[k] ^ 1);  // touching for the first time: the slot negated
+    const int c = code[k - k0];
+    const int touching = c & 1, fresh = touching & (touch[k] ^ 1);
     on[count] = static_cast<std::int32_t>(k) ^ -fresh;
     count += touching;
     touch[k] = static_cast<std::uint8_t>(touching);
-    // The history of a slot that is not touching is never read (the next contact of the pair
-    // starts from zero, below), so only the forces and the ratio are cleared here.
-    lfx[k] = lfy[k] = lft[k] = 0.0;
-    const double ratio = static_cast<double>(coincident);
-    lratio[k] = ratio;
-    max_ratio = std::max(max_ratio, ratio);
+    if (fresh) ldn[k] = lds[k] = 0.0;  // rare: the branch is well predicted
+    if ((c >> 1) && 1.0 > max_ratio) {
+      max_ratio = 1.0;
+      worst = k;
+    }
   }
-  const ContactParams params = params_;
+  ContactScratch& cs = L.contact_scratch;
+  const PairContactOut out{cs.dn.data() + k0,    cs.ds.data() + k0,      cs.fx.data() + k0,
+                           cs.fy.data() + k0,    cs.ft.data() + k0,      cs.ratio.data() + k0,
+                           cs.dashpot.data() + k0, cs.friction.data() + k0, cs.sliding.data() + k0};
+  pair_contacts(pk, li, lj, ldn, lds, on, count, params_, Incremental, dtau, out);
   int sliding = 0;
+  std::vector<Push>& pass = passed_[static_cast<std::size_t>(t)];
+  pass.clear();
+  const auto end = static_cast<std::int32_t>(e);
   BlockLedger ledger(block_ledger_.data());  // by the pairs' first particles: they come in i order
   for (std::int64_t q = 0; q < count; ++q) {
-    const bool fresh = on[q] < 0;
-    const std::int64_t k = fresh ? ~on[q] : on[q];
-    const int i = li[k], j = lj[k];
-    const double px = x[j] - x[i], py = y[j] - y[i];
-    const double R = r[i] + r[j];
-    const double L2 = px * px + py * py;
-    const double Lc = std::sqrt(L2);
-    const double nx = px / Lc, ny = py / Lc;
-    const double tx = -ny, ty = nx;
-    const double vrx = vx[i] - vx[j], vry = vy[i] - vy[j];
-    const double vn = vrx * nx + vry * ny;
-    const double vt = vrx * tx + vry * ty + w[i] * r[i] + w[j] * r[j];
-    double dn = ldn[k], ds = lds[k], tau = dtau;
-    if (fresh) {  // rare: the branch is well predicted
-      dn = ds = 0.0;
-      if (Incremental) tau = std::min(time_since_touch(px, py, -vrx, -vry, R, Lc), dtau);  // eq 13
-    }
-    if constexpr (Incremental) {
-      dn += vn * tau;  // eqs 14, 16
-    } else {
-      dn = R - Lc;
-    }
-    ds += vt * tau;  // eqs 15, 17
-    const double ds_before = ds;
-    const ContactForce f = contact_force(params, dn, ds, vn, vt);
-    const ContactLoss loss = contact_loss(params, f, ds_before, ds, vn, vt, dtau);
-    ledger.add(static_cast<std::size_t>(i), 0.0, loss);
-    ldn[k] = dn;
-    lds[k] = ds;
-    lfx[k] = f.fn * nx + f.ft * tx;
-    lfy[k] = f.fn * ny + f.ft * ty;
-    lft[k] = f.ft;
-    const double ratio = 1.0 - Lc / R;
-    lratio[k] = ratio;
+    const std::int32_t k = on[q] ^ (on[q] >> 31);
+    ldn[k] = out.dn[q];
+    lds[k] = out.ds[q];
+    const double ratio = out.ratio[q];
+    worst = ratio > max_ratio ? k : worst;
     max_ratio = std::max(max_ratio, ratio);
-    sliding += f.sliding;
+    sliding += out.sliding[q];
+    ledger.add(static_cast<std::size_t>(li[k]), 0.0, ContactLoss{out.dashpot[q], out.friction[q]});
+    if (lj[k] >= end) pass.push_back(Push{out.fx[q], out.fy[q], out.ft[q], ratio, lj[k]});
   }
-  acc.contacts += static_cast<int>(count);
+  acc.contacts = static_cast<int>(count);
   acc.sliding += sliding;
   acc.max_ratio = std::max(acc.max_ratio, max_ratio);
+  acc.worst = worst;
 }
 
-// Pass 2 over particles [b, e): gravity, gas and the pair forces gathered in a fixed order
-// (entries where the particle is second, then first: one list), then each wall in turn. The
-// walls go as the pairs do: one sweep finds the particles touching the wall and those that have
-// just left it (branch-free; the latter's history is then cleared), the next computes the
-// contacts. Each particle's
-// force is summed in the order: gathered pairs, then walls 0, 1, 2, (3).
+// Pass 2 over particles [b, e), after every thread's pair pass. Each particle's force is summed
+// in a fixed order whatever the thread count: gas and gravity; its contacts in (i, j) order of
+// their slots - those passed on by earlier threads (their first particle below b), then this
+// thread's, a contact adding its force to i and subtracting it from j, so a particle gets those
+// where it is second by ascending partner, then those where it is first, by ascending partner -
+// then walls 0, 1, 2, (3) for the particles that can reach one. Then the integrator's part after
+// the forces, each block's kinetic energy and the box check, and on the way each block's share of
+// the gas's work over the step at the velocities the contacts see. Returns true when a particle
+// has left the box.
 template <bool Incremental>
-void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPartial& acc) {
+bool DemSolver::particle_pass(int t, std::size_t b, std::size_t e, double dtau, StepPartial& acc) {
   Particles& P = state_.particles;
   const auto a = P.arrays();
   const double *x = a.x, *y = a.y, *vx = a.vx, *vy = a.vy, *w = a.w, *r = a.radius;
-  const NeighbourList& L = list_;
-  const double* lfx = L.fx.data();
-  const double* lfy = L.fy.data();
-  const double* lft = L.ft.data();
-  const double* lratio = L.ratio.data();
-  const std::int32_t* gb = L.gather_begin.data();
-  const std::int32_t* gl = L.gather.data();
   double *fx = a.fx, *fy = a.fy, *tq = a.torque, *ov = overlap_.data();
+  const double* efx = a.ext_fx;
+  const double* efy = a.ext_fy;
+  const double* m = a.mass;
   const double g = gravity_;
-  // Block by block (thread ranges are whole blocks), so that each block's share of the gas's
-  // work over the step, at the velocities the contacts see, is summed on the way.
   for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk) {
-    const std::size_t i0 = std::max(b, blk * kParticleBlock),
-                      i1 = std::min(e, (blk + 1) * kParticleBlock);
+    const std::size_t i0 = std::max(b, blk * kParticleBlock), i1 = std::min(e, (blk + 1) * kParticleBlock);
     double gas = 0.0;
     for (std::size_t i = i0; i < i1; ++i) {
-      double fxi = P.ext_fx[i], fyi = P.ext_fy[i] - P.mass[i] * g, tqi = 0.0, ovi = 0.0;
-      gas += P.ext_fx[i] * vx[i] + P.ext_fy[i] * vy[i];
-      for (std::int32_t q = gb[i]; q < gb[i + 1]; ++q) {
-        const std::int32_t c = gl[q];
-        const std::int32_t k = c ^ (c >> 31);  // ~c for the entries stored negated
-        const double sign = static_cast<double>(1 | (c >> 31));  // -1 there: x + (-1) f is x - f
-        fxi += sign * lfx[k];
-        fyi += sign * lfy[k];
-        tqi += r[i] * lft[k];
-        ovi = std::max(ovi, lratio[k]);
-      }
-      fx[i] = fxi;
-      fy[i] = fyi;
-      tq[i] = tqi;
-      ov[i] = ovi;
+      fx[i] = efx[i];
+      fy[i] = efy[i] - m[i] * g;
+      tq[i] = 0.0;
+      ov[i] = 0.0;
+      gas += efx[i] * vx[i] + efy[i] * vy[i];
     }
     block_ledger_[blk].gas_work += gas * dtau;
   }
-  // Walls: only the particles that can reach one before the next neighbour-list build (found at
-  // each build, sorted), each wall in turn for each of them, so a particle's force is summed in
-  // the order gathered pairs, then walls 0, 1, 2, (3).
+  auto take = [&](std::int32_t j, double cfx, double cfy, double cft, double ratio) {
+    fx[j] -= cfx;
+    fy[j] -= cfy;
+    tq[j] += r[j] * cft;
+    ov[j] = std::max(ov[j], ratio);
+  };
+  const auto lo = static_cast<std::int32_t>(b), hi = static_cast<std::int32_t>(e);
+  for (int u = 0; u < t; ++u)
+    for (const Push& c : passed_[static_cast<std::size_t>(u)])
+      if (c.j >= lo && c.j < hi) take(c.j, c.fx, c.fy, c.ft, c.ratio);
+  {
+    const NeighbourList& L = list_;
+    const PairSlots& S = L.slots();
+    const std::int32_t* li = S.i.data();
+    const std::int32_t* lj = S.j.data();
+    const std::int32_t* on = L.active.data() + acc.k0;
+    const ContactScratch& cs = L.contact_scratch;
+    const double* cfx = cs.fx.data() + acc.k0;
+    const double* cfy = cs.fy.data() + acc.k0;
+    const double* cft = cs.ft.data() + acc.k0;
+    const double* crt = cs.ratio.data() + acc.k0;
+    for (int q = 0; q < acc.contacts; ++q) {
+      const std::int32_t k = on[q] ^ (on[q] >> 31);
+      const std::int32_t i = li[k], j = lj[k];
+      fx[i] += cfx[q];
+      fy[i] += cfy[q];
+      tq[i] += r[i] * cft[q];
+      ov[i] = std::max(ov[i], crt[q]);
+      if (j < hi) take(j, cfx[q], cfy[q], cft[q], crt[q]);
+    }
+  }
+  // Walls: only the particles that can reach one before the next neighbour-list build (listed at
+  // each build, ascending).
   WallHistory& wh = state_.walls;
   const int nw = static_cast<int>(walls_.size());
   const ContactParams params = params_;
   std::uint8_t* active = wh.active.data();
   double* hdn = wh.dn.data();
   double* hds = wh.ds.data();
-  const auto* nb = near_wall_.data();
-  const auto* ne = nb + near_wall_.size();
-  const auto* q0 = std::lower_bound(nb, ne, static_cast<std::int32_t>(b));
-  const auto* q1 = std::lower_bound(q0, ne, static_cast<std::int32_t>(e));
   double max_wall_ratio = 0.0;
   int wall_contacts = 0, sliding = 0;
   BlockLedger ledger(block_ledger_.data());
-  for (const auto* q = q0; q != q1; ++q) {
-    const auto i = static_cast<std::size_t>(*q);
+  for (const std::int32_t ni : near_wall_[static_cast<std::size_t>(t)]) {
+    const auto i = static_cast<std::size_t>(ni);
     for (int c = 0; c < nw; ++c) {
       const Wall& wall = walls_[static_cast<std::size_t>(c)];
       const std::size_t s = i * nw + c;
@@ -299,9 +293,14 @@ void DemSolver::particle_pass(std::size_t b, std::size_t e, double dtau, StepPar
       ++wall_contacts;
     }
   }
+  bool outside = false;
+  for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk)
+    outside |= after_forces(blk, std::max(b, blk * kParticleBlock),
+                            std::min(e, (blk + 1) * kParticleBlock));
   acc.wall_contacts += wall_contacts;
   acc.sliding += sliding;
   acc.max_wall_ratio = std::max(acc.max_wall_ratio, max_wall_ratio);
+  return outside;
 }
 
 // The integrator's part before the forces (predictor, kick-drift) for particles [b, e).
@@ -309,47 +308,44 @@ void DemSolver::before_forces(std::size_t b, std::size_t e) {
   predict(integrator_, dt_, state_.particles, b, e);
 }
 
-// The integrator's part after the forces (corrector, kick, Euler update) for particles [b, e),
-// and each block's kinetic energy. Returns true when one of them has left the box.
-bool DemSolver::after_forces(std::size_t b, std::size_t e) {
-  correct(integrator_, dt_, state_.particles, b, e);
+// The integrator's part after the forces (corrector, kick, Euler update) for particles [i0, i1)
+// of block blk, and the block's kinetic energy. Returns true when one of them has left the box.
+bool DemSolver::after_forces(std::size_t blk, std::size_t i0, std::size_t i1) {
+  correct(integrator_, dt_, state_.particles, i0, i1);
   const auto a = std::as_const(state_.particles).arrays();
   const double *x = a.x, *y = a.y, *vx = a.vx, *vy = a.vy, *w = a.w;
   const double *ii = a.inv_inertia, *m = a.mass, *r = a.radius;
-  for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk) {
-    const std::size_t q1 = std::min(e, (blk + 1) * kParticleBlock);
-    double ke = 0.0;
-    for (std::size_t i = blk * kParticleBlock; i < q1; ++i)
-      ke += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * w[i] * w[i] / ii[i];
-    block_ke_[blk] = ke;
-  }
+  double ke = 0.0;
+  for (std::size_t i = i0; i < i1; ++i)
+    ke += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * w[i] * w[i] / ii[i];
+  block_ke_[blk] = ke;
   // Every particle inside the box (with a radius of slack): branch-free; finish_step looks for
   // the culprit only when this fails.
   bool outside = false;
-  for (std::size_t i = b; i < e; ++i)
+  for (std::size_t i = i0; i < i1; ++i)
     outside |= !(x[i] >= -r[i] && x[i] <= width_ + r[i] && y[i] >= -r[i] && y[i] <= height_ + r[i]);
   return outside;
 }
 
-void DemSolver::rebuild() {
-  list_.build(state_.particles);
-  find_near_wall();
+void DemSolver::rebuild(int t, int T, std::size_t b, std::size_t e) {
+  list_.build(state_.particles, t, T, b, e);
+  find_near_wall(near_wall_[static_cast<std::size_t>(t)], b, e);
+  if (t == 0) near_threads_ = T;
 }
 
-void DemSolver::find_near_wall() {
+void DemSolver::find_near_wall(std::vector<std::int32_t>& out, std::size_t b, std::size_t e) const {
   const Particles& P = state_.particles;
-  const std::size_t n = P.size();
   const int nw = static_cast<int>(walls_.size());
   const std::uint8_t* active = state_.walls.active.data();
-  near_wall_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
+  out.clear();
+  for (std::size_t i = b; i < e; ++i) {
     bool near = false;
     for (int c = 0; c < nw; ++c) {
       const Wall& wall = walls_[static_cast<std::size_t>(c)];
       const double d = wall.nx * P.x[i] + wall.ny * P.y[i] - wall.offset;
       near = near || d < P.radius[i] + skin_ || active[i * nw + c] != 0;
     }
-    if (near) near_wall_.push_back(static_cast<std::int32_t>(i));
+    if (near) out.push_back(static_cast<std::int32_t>(i));
   }
 }
 
@@ -365,8 +361,8 @@ void DemSolver::balance(int T) {
   constexpr double kParticleWork = 3.0;
   const std::size_t n = state_.particles.size();
   const std::size_t blocks = particle_blocks(n);
-  const std::int32_t* fb = list_.first_begin.data();
-  const bool have_list = list_.first_begin.size() == n + 1;
+  const std::int32_t* fb = list_.slots().first_begin.data();
+  const bool have_list = list_.built();
   auto work_to = [&](std::size_t p) {  // work of particles [0, p)
     return kParticleWork * static_cast<double>(p) + (have_list ? static_cast<double>(fb[p]) : 0.0);
   };
@@ -402,26 +398,29 @@ void DemSolver::step_particles(const RangeWork& after) {
       last = now;
     };
     before_forces(b, e);
-    partial_[t].stale = list_.stale(state_.particles, b, e);
+    list_.displacement(state_.particles, b, e, partial_[t].moved2);
     lap(Phase::Integration);
 #pragma omp barrier
+    // Every thread reads the same partial results in the same order: the same decision.
+    double m1 = 0.0, m2 = 0.0;
+    for (const auto& a : partial_) {
+      m2 = std::max(std::max(m2, a.moved2[1]), std::min(m1, a.moved2[0]));
+      m1 = std::max(m1, a.moved2[0]);
+    }
+    if (list_.stale(m1, m2) || near_threads_ != T) {
 #pragma omp single
-    {
-      bool stale = false;
-      for (const auto& a : partial_) stale = stale || a.stale;
-      if (stale) rebuild();
-      if (stale || split_.size() != static_cast<std::size_t>(T) + 1) balance(T);
+      balance(T);
+      thread_range(t, T, b, e);
+      rebuild(t, T, b, e);
     }
     lap(Phase::Neighbours);
-    thread_range(t, T, b, e);
     for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk)
       block_ledger_[blk] = EnergyLedger{};
-    pair_pass<Incremental>(list_.first_begin[b], list_.first_begin[e], h, partial_[t]);
+    partial_[t].k0 = list_.slots().first_begin[b];
+    pair_pass<Incremental>(t, e, h, partial_[t]);
 #pragma omp barrier
-    particle_pass<Incremental>(b, e, h, partial_[t]);
+    partial_[t].outside = particle_pass<Incremental>(t, b, e, h, partial_[t]);
     lap(Phase::Contacts);
-    partial_[t].outside = after_forces(b, e);
-    lap(Phase::Integration);
     if (after) {
       after(b, e);
       lap(Phase::Coupling);
@@ -430,7 +429,7 @@ void DemSolver::step_particles(const RangeWork& after) {
   StepPartial sum;
   for (const auto& a : partial_) {
     sum.outside = sum.outside || a.outside;
-    sum.contacts += a.contacts;
+    sum.contacts += a.contacts;  // pairs
     sum.sliding += a.sliding;
     sum.wall_contacts += a.wall_contacts;
     sum.max_ratio = std::max(sum.max_ratio, a.max_ratio);
@@ -503,11 +502,10 @@ void DemSolver::finish_step() {
   const double worst = std::max(diag_.max_overlap_ratio, 0.5 * diag_.max_wall_overlap_ratio);
   if (worst > overlap_limit_) {
     // The first pair (in list order) with the largest overlap, for the message.
-    const NeighbourList& L = list_;
-    for (std::size_t k = 0; k < L.size(); ++k)
-      if (L.ratio[k] == diag_.max_overlap_ratio) {
-        worst_pair_i_ = L.i[k];
-        worst_pair_j_ = L.j[k];
+    for (const auto& a : partial_)
+      if (a.worst >= 0 && a.max_ratio == diag_.max_overlap_ratio) {
+        worst_pair_i_ = list_.slots().i[static_cast<std::size_t>(a.worst)];
+        worst_pair_j_ = list_.slots().j[static_cast<std::size_t>(a.worst)];
         break;
       }
     std::ostringstream os;
@@ -533,7 +531,7 @@ SpringEnergy DemSolver::spring_energy() const {
   };
   const NeighbourList& L = list_;
   for (std::size_t k = 0; k < L.size(); ++k)
-    if (L.touching[k]) add(L.dn[k], L.ds[k]);
+    if (L.slots().touching[k]) add(L.slots().dn[k], L.slots().ds[k]);
   const WallHistory& wh = state_.walls;
   for (std::size_t s = 0; s < wh.active.size(); ++s)
     if (wh.active[s]) add(wh.dn[s], wh.ds[s]);
@@ -555,11 +553,12 @@ std::uint64_t DemSolver::configuration_hash() const {
   // The touching pairs in (i, j) order: the same whatever the skin or the rebuild times.
   const NeighbourList& L = list_;
   for (std::size_t k = 0; k < L.size(); ++k) {
-    if (!L.touching[k]) continue;
-    h.value(L.i[k]);
-    h.value(L.j[k]);
-    h.value(L.dn[k]);
-    h.value(L.ds[k]);
+    const PairSlots& S = L.slots();
+    if (!S.touching[k]) continue;
+    h.value(S.i[k]);
+    h.value(S.j[k]);
+    h.value(S.dn[k]);
+    h.value(S.ds[k]);
   }
   h.values(state_.walls.active);
   h.values(state_.walls.dn);

@@ -135,16 +135,19 @@ class DemSolver {
   struct alignas(64) StepPartial {
     int contacts = 0, sliding = 0, wall_contacts = 0;
     double max_ratio = 0.0, max_wall_ratio = 0.0;
-    bool stale = false, outside = false;
+    double moved2[2] = {0.0, 0.0};  // m^2, two largest squared displacements since the build
+    std::int64_t k0 = 0;            // the thread's first candidate slot
+    std::int64_t worst = -1;        // the first slot with the largest pair overlap (-1: none)
+    bool outside = false;
   };
   template <bool Incremental>
   void step_particles(const RangeWork& after);
   template <bool Incremental>
-  void pair_pass(std::int64_t k0, std::int64_t k1, double dtau, StepPartial& acc);
+  void pair_pass(int t, std::size_t e, double dtau, StepPartial& acc);
   template <bool Incremental>
-  void particle_pass(std::size_t b, std::size_t e, double dtau, StepPartial& acc);
+  bool particle_pass(int t, std::size_t b, std::size_t e, double dtau, StepPartial& acc);
   void before_forces(std::size_t b, std::size_t e);
-  bool after_forces(std::size_t b, std::size_t e);
+  bool after_forces(std::size_t blk, std::size_t i0, std::size_t i1);
   void finish_step();
   void balance(int threads);
   [[noreturn]] void fail(const std::string& what) const;
@@ -165,15 +168,23 @@ class DemSolver {
   StepDiagnostics diag_;
   std::vector<double> overlap_;
   double skin_ = 0.0;  // m, of the neighbour list
-  // The particles that can touch a wall before the next neighbour-list build, ascending: within
-  // R + skin of a wall at the build (they move less than skin / 2 until the next), or touching
-  // one then (so that its history is cleared when they part).
-  std::vector<std::int32_t> near_wall_;
-  void find_near_wall();
-  // Rebuilds the neighbour list and what depends on it (the wall candidates).
-  void rebuild();
+  // Per thread, its particles that can touch a wall before the next neighbour-list build,
+  // ascending: within R + skin of a wall at the build (they move less than the skin until the
+  // next), or touching one then (so that its history is cleared when they part).
+  std::vector<std::vector<std::int32_t>> near_wall_;
+  int near_threads_ = 0;  // the thread count near_wall_ was made for (0: none)
+  void find_near_wall(std::vector<std::int32_t>& out, std::size_t b, std::size_t e) const;
+  // Rebuilds the neighbour list and what depends on it (the wall candidates): called by each of
+  // the T threads of the step with its particles [b, e), or by one (t = 0, T = 1) outside.
+  void rebuild(int t, int T, std::size_t b, std::size_t e);
   mutable PhaseTimes times_;
   std::vector<StepPartial> partial_;  // per thread
+  // A contact's force as passed to the thread that holds its second particle j.
+  struct Push {
+    double fx, fy, ft, ratio;
+    std::int32_t j;
+  };
+  std::vector<std::vector<Push>> passed_;  // per thread: its contacts with j beyond its range
   std::vector<double> block_ke_;      // J, per block of particles (core/threads.hpp)
   // The step's energy ledger per block of particles (a pair counts in its first particle's
   // block), summed in block order: the same bits for any thread count.

@@ -2,39 +2,57 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace fluidbed {
 
 void NeighbourList::configure(double width, double height, double dmax, double skin,
-                              std::size_t particles) {
+                              std::size_t particles, int threads) {
   skin_ = skin;
   // Cells wide enough that every candidate pair is in the same or adjacent cells, and no more
   // cells than about twice the particles, so a sparse scene (one dropped sphere) costs nothing.
   const double sparse = std::sqrt(width * height / (2.0 * static_cast<double>(std::max<std::size_t>(particles, 1))));
   grid_.configure(width, height, std::max(dmax + skin, sparse));
-  first_begin.assign(particles + 1, 0);
-  second_begin.assign(particles + 1, 0);
-  gather_begin.assign(particles + 1, 0);
+  for (PairSlots& s : set_) {
+    s = PairSlots{};
+    s.first_begin.assign(particles + 1, 0);
+  }
+  cur_ = 0;
+  found_.assign(static_cast<std::size_t>(std::max(threads, 1)), Found{});
+  for (Found& f : found_) f.near.assign(particles + 1, 0);
+  offset_.assign(found_.size() + 1, 0);
   built_ = false;
   built_once_ = false;
 }
 
-bool NeighbourList::stale(const Particles& p) const { return stale(p, 0, p.size()); }
-
-bool NeighbourList::stale(const Particles& p, std::size_t begin, std::size_t end) const {
-  if (!built_) return true;
-  const double limit = 0.25 * skin_ * skin_;  // (skin / 2)^2
-  const double* x = p.x.data();
-  const double* y = p.y.data();
-  const double* xr = x_ref_.data();
-  const double* yr = y_ref_.data();
-  // No early exit: a branch-free loop that vectorises is faster over a few thousand particles.
-  bool moved = false;
-  for (std::size_t k = begin; k < end; ++k) {
-    const double dx = x[k] - xr[k], dy = y[k] - yr[k];
-    moved |= dx * dx + dy * dy > limit;
+void NeighbourList::displacement(const Particles& p, std::size_t begin, std::size_t end,
+                                 double moved2[2]) const {
+  double m1 = 0.0, m2 = 0.0;
+  if (built_) {
+    const double* x = p.x.data();
+    const double* y = p.y.data();
+    const double* xr = x_ref_.data();
+    const double* yr = y_ref_.data();
+    // No early exit and no branch: a loop that vectorises is faster over a few thousand.
+    for (std::size_t k = begin; k < end; ++k) {
+      const double dx = x[k] - xr[k], dy = y[k] - yr[k];
+      const double d2 = dx * dx + dy * dy;
+      m2 = std::max(m2, std::min(m1, d2));
+      m1 = std::max(m1, d2);
+    }
   }
-  return moved;
+  moved2[0] = m1;
+  moved2[1] = m2;
+}
+
+bool NeighbourList::stale(double largest, double second) const {
+  return !built_ || std::sqrt(largest) + std::sqrt(second) > skin_;
+}
+
+bool NeighbourList::stale(const Particles& p) const {
+  double m[2];
+  displacement(p, 0, p.size(), m);
+  return stale(m[0], m[1]);
 }
 
 void NeighbourList::import_history(const PairContacts& saved) {
@@ -45,123 +63,162 @@ void NeighbourList::import_history(const PairContacts& saved) {
 
 void NeighbourList::export_history(PairContacts& out) const {
   out.clear();
-  for (std::size_t k = 0; k < i.size(); ++k) {
-    if (!touching[k]) continue;
-    out.i.push_back(i[k]);
-    out.j.push_back(j[k]);
-    out.dn.push_back(dn[k]);
-    out.ds.push_back(ds[k]);
+  const PairSlots& s = slots();
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    if (!s.touching[k]) continue;
+    out.i.push_back(s.i[k]);
+    out.j.push_back(s.j[k]);
+    out.dn.push_back(s.dn[k]);
+    out.ds.push_back(s.ds[k]);
   }
 }
 
-void NeighbourList::build(const Particles& p, const PairContacts* seed) {
-  if (!seed && seeded_) seed = &seed_;
-  const std::size_t n = p.size();
-  grid_.build(p.x, p.y);
+// Particles [begin, end): for each a in turn, the partners b > a within reach in the nine cells
+// around it, sorted (a handful, by insertion), with the history of the pairs the last list held
+// (each particle's old entries are sorted by j: a merge). The reach test is branch-free (every
+// candidate is written, the count advances only for the ones kept): whether a neighbour is within
+// reach follows no pattern a branch predictor could learn. Writes out's arrays from 0 and
+// first_begin[a] relative to them.
+void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin,
+                               std::size_t end, Found& out, std::vector<std::int32_t>& first_begin) {
+  const PairSlots& old = set_[cur_];
   const double* x = p.x.data();
   const double* y = p.y.data();
   const double* r = p.radius.data();
-  // Candidates in (i, j) order straight away: for each i in turn, the partners j > i in the nine
-  // cells around it, sorted (a handful, by insertion). No sort of the whole list, no allocation
-  // once warm. The filter is branch-free (every candidate is written, the count advances only
-  // for the ones kept): whether a neighbour is within reach follows no pattern a branch
-  // predictor could learn.
-  ni_.clear();
-  nj_.clear();
-  ndn_.clear();
-  nds_.clear();
-  nt_.clear();
-  near_.resize(n + 1);
-  std::int32_t* nb = near_.data();
-  // The old history is merged particle by particle, through the old list's first_begin
-  // (each particle's old entries, sorted by j), which is overwritten as the new one is made.
-  // A saved history (`seed`) is merged afterwards instead.
-  const bool carry = !seed && built_once_;
-  std::int32_t* fb = first_begin.data();
-  for (std::size_t a = 0; a < n; ++a) {
+  const std::int32_t* ids = grid_.ids();
+  const double* xs = grid_.xs();
+  const double* ys = grid_.ys();
+  const double* rs = grid_.rs();
+  std::int32_t* nb = out.near.data();
+  std::size_t m = 0;
+  for (std::size_t a = begin; a < end; ++a) {
     const double xa = x[a], ya = y[a], ra = r[a] + skin_;
     const auto ia = static_cast<std::int32_t>(a);
+    int rb[3], re[3];
+    const int runs = grid_.near_runs(a, rb, re);
     int count = 0;
-    grid_.for_each_near(xa, ya, [&](std::int32_t b) {
-      const double dx = x[b] - xa, dy = y[b] - ya;
-      const double reach = ra + r[b];
-      nb[count] = b;
-      count += (b > ia) & (dx * dx + dy * dy < reach * reach);
-    });
-    for (int q = 1; q < count; ++q) {  // insertion sort: a handful, nearly in order
+    for (int q = 0; q < runs; ++q)
+      for (int k = rb[q]; k < re[q]; ++k) {
+        const double dx = xs[k] - xa, dy = ys[k] - ya;
+        const double reach = ra + rs[k];
+        const std::int32_t b = ids[k];
+        nb[count] = b;
+        count += (b > ia) & (dx * dx + dy * dy < reach * reach);
+      }
+    for (int q = 1; q < count; ++q) {  // insertion sort: a handful
       const std::int32_t v = nb[q];
       int u = q;
       for (; u > 0 && nb[u - 1] > v; --u) nb[u] = nb[u - 1];
       nb[u] = v;
     }
-    std::int32_t o = carry ? fb[a] : 0;
-    const std::int32_t oe = carry ? fb[a + 1] : 0;
-    fb[a] = static_cast<std::int32_t>(ni_.size());
-    for (int q = 0; q < count; ++q) {
+    if (m + static_cast<std::size_t>(count) > out.i.size()) {
+      const std::size_t grown = std::max(2 * out.i.size(), m + count + 64);
+      out.i.resize(grown);
+      out.j.resize(grown);
+      out.dn.resize(grown);
+      out.ds.resize(grown);
+      out.touching.resize(grown);
+    }
+    std::int32_t o = carry ? old.first_begin[a] : 0;
+    const std::int32_t oe = carry ? old.first_begin[a + 1] : 0;
+    first_begin[a] = static_cast<std::int32_t>(m);
+    for (int q = 0; q < count; ++q, ++m) {
       const std::int32_t b = nb[q];
-      while (o < oe && j[o] < b) ++o;
-      const bool kept = o < oe && j[o] == b && touching[o] != 0;
-      ni_.push_back(ia);
-      nj_.push_back(b);
-      ndn_.push_back(kept ? dn[o] : 0.0);
-      nds_.push_back(kept ? ds[o] : 0.0);
-      nt_.push_back(kept ? 1 : 0);
+      while (o < oe && old.j[o] < b) ++o;
+      const bool kept = o < oe && old.j[o] == b && old.touching[o] != 0;
+      out.i[m] = ia;
+      out.j[m] = b;
+      out.dn[m] = kept ? old.dn[o] : 0.0;
+      out.ds[m] = kept ? old.ds[o] : 0.0;
+      out.touching[m] = kept ? 1 : 0;
     }
   }
-  const std::size_t m = ni_.size();
-  fb[n] = static_cast<std::int32_t>(m);
+  out.count = m;
+}
 
-  if (seed) {  // a saved history (sorted by pair) merged into the new slots
-    auto key = [](std::int32_t u, std::int32_t v) {
-      return static_cast<std::uint64_t>(u) << 32 | static_cast<std::uint32_t>(v);
-    };
-    std::size_t o = 0;
-    for (std::size_t k = 0; k < m; ++k) {
-      const std::uint64_t kk = key(ni_[k], nj_[k]);
-      while (o < seed->i.size() && key(seed->i[o], seed->j[o]) < kk) ++o;
-      if (o < seed->i.size() && seed->i[o] == ni_[k] && seed->j[o] == nj_[k]) {
-        ndn_[k] = seed->dn[o];
-        nds_[k] = seed->ds[o];
-        nt_[k] = 1;
-      }
+void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, std::size_t end) {
+  const std::size_t n = p.size();
+  const int next = 1 - cur_;
+  const bool seeded = seeded_;  // read by every thread before merge_seed clears it
+  const bool carry = !seeded && built_once_;
+  PairSlots& out = set_[next];
+  Found& f = found_[static_cast<std::size_t>(t)];
+#pragma omp single
+  grid_.build(p.x, p.y, p.radius);
+  // Thread 0's pairs go straight into the new set (its arrays lent to the scratch and returned);
+  // the others' are copied behind them.
+  auto lend = [](Found& a, PairSlots& b) {
+    std::swap(a.i, b.i);
+    std::swap(a.j, b.j);
+    std::swap(a.dn, b.dn);
+    std::swap(a.ds, b.ds);
+    std::swap(a.touching, b.touching);
+  };
+  if (t == 0) lend(f, out);
+  find_pairs(p, carry, begin, end, f, out.first_begin);
+  if (t == 0) lend(f, out);
+#pragma omp barrier
+#pragma omp single
+  {
+    offset_[0] = 0;
+    for (int u = 0; u < T; ++u) offset_[u + 1] = offset_[u] + found_[u].count;
+    const std::size_t m = offset_[T];
+    out.i.resize(m);
+    out.j.resize(m);
+    out.dn.resize(m);
+    out.ds.resize(m);
+    out.touching.resize(m);
+    out.first_begin[n] = static_cast<std::int32_t>(m);
+    active.resize(m);
+    code.resize(m);
+    contact_scratch.resize(m);
+    x_ref_.resize(n);
+    y_ref_.resize(n);
+    cur_ = next;
+    built_ = true;
+    built_once_ = true;
+    ++builds_;
+  }
+  // Each thread: its pairs behind those of the threads before it, its particles' starts shifted
+  // there, its reference positions.
+  const std::size_t off = offset_[t];
+  if (t > 0) {
+    std::copy_n(f.i.begin(), f.count, out.i.begin() + off);
+    std::copy_n(f.j.begin(), f.count, out.j.begin() + off);
+    std::copy_n(f.dn.begin(), f.count, out.dn.begin() + off);
+    std::copy_n(f.ds.begin(), f.count, out.ds.begin() + off);
+    std::copy_n(f.touching.begin(), f.count, out.touching.begin() + off);
+    for (std::size_t a = begin; a < end; ++a) out.first_begin[a] += static_cast<std::int32_t>(off);
+  }
+  std::copy(p.x.begin() + begin, p.x.begin() + end, x_ref_.begin() + begin);
+  std::copy(p.y.begin() + begin, p.y.begin() + end, y_ref_.begin() + begin);
+  // The whole list in place before any thread reads another's part (a thread's last start,
+  // first_begin[end], is the next thread's first, shifted by it above).
+#pragma omp barrier
+  if (seeded) {  // a saved history, merged once the whole list is in place
+#pragma omp single
+    merge_seed();
+  }
+}
+
+// The saved history (sorted by pair) merged into the new slots; no other history is carried.
+void NeighbourList::merge_seed() {
+  PairSlots& s = slots();
+  auto key = [](std::int32_t u, std::int32_t v) {
+    return static_cast<std::uint64_t>(u) << 32 | static_cast<std::uint32_t>(v);
+  };
+  std::size_t o = 0;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const std::uint64_t kk = key(s.i[k], s.j[k]);
+    while (o < seed_.i.size() && key(seed_.i[o], seed_.j[o]) < kk) ++o;
+    if (o < seed_.i.size() && seed_.i[o] == s.i[k] && seed_.j[o] == s.j[k]) {
+      s.dn[k] = seed_.dn[o];
+      s.ds[k] = seed_.ds[o];
+      s.touching[k] = 1;
     }
   }
-  i.swap(ni_);
-  j.swap(nj_);
-  dn.swap(ndn_);
-  ds.swap(nds_);
-  touching.swap(nt_);
   seeded_ = false;
   seed_.clear();
-  fx.resize(m);
-  fy.resize(m);
-  ft.resize(m);
-  ratio.resize(m);
-  active.resize(m);
-
-  // Gather lists: entries are sorted by i, so each particle's "first" entries are contiguous
-  // (first_begin, made above); its "second" entries come from a stable counting sort by j.
-  second_begin.assign(n + 1, 0);
-  for (std::size_t k = 0; k < m; ++k) ++second_begin[j[k] + 1];
-  for (std::size_t q = 0; q < n; ++q) second_begin[q + 1] += second_begin[q];
-  second_pair.resize(m);
-  counts_.assign(second_begin.begin(), second_begin.end() - 1);
-  for (std::size_t k = 0; k < m; ++k) second_pair[counts_[j[k]]++] = static_cast<std::int32_t>(k);
-  gather_begin.resize(n + 1);
-  gather.resize(2 * m);
-  std::int32_t g = 0;
-  for (std::size_t q = 0; q < n; ++q) {
-    gather_begin[q] = g;
-    for (std::int32_t u = second_begin[q]; u < second_begin[q + 1]; ++u) gather[g++] = ~second_pair[u];
-    for (std::int32_t k = first_begin[q]; k < first_begin[q + 1]; ++k) gather[g++] = k;
-  }
-  gather_begin[n] = g;
-
-  x_ref_.assign(p.x.begin(), p.x.end());
-  y_ref_.assign(p.y.begin(), p.y.end());
-  built_ = true;
-  built_once_ = true;
-  ++builds_;
 }
 
 }  // namespace fluidbed

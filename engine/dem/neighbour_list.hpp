@@ -1,12 +1,16 @@
 #pragma once
 // The candidate contact pairs: every pair closer than R_i + R_j + skin, found on a cell grid and
-// rebuilt only when some particle has moved more than half the skin since the last build. Each
-// slot carries its pair's contact history, so contacts survive rebuilds (merged by pair), and
-// the results of the last force evaluation, gathered per particle through index lists.
+// rebuilt only when two particles together may have moved more than the skin since the last
+// build. Each slot carries its pair's contact history, so contacts survive rebuilds (merged by
+// pair).
 //
-// Entries are sorted by (i, j), and each particle gathers its pair forces in a fixed order, so
-// the forces - and every result - are the same bits whatever the skin, the rebuild times or the
-// number of threads.
+// Entries are sorted by (i, j), and each particle sums its pair forces in that order
+// (DemSolver::particle_pass), so the forces - and every result - are the same bits whatever the
+// skin, the rebuild times or the number of threads.
+//
+// A build runs on every thread of the step's parallel region: thread t finds the pairs of its own
+// particles (their first particle in its range) and the threads' lists are joined in thread order,
+// which is the (i, j) order.
 #include <cstdint>
 #include <vector>
 
@@ -16,55 +20,92 @@
 
 namespace fluidbed {
 
+// The pair slots with their history, sorted by (i, j), and where each particle's entries begin.
+struct PairSlots {
+  std::vector<std::int32_t> i, j;
+  std::vector<double> dn, ds;          // m, normal and tangential (shear) displacement
+  std::vector<std::uint8_t> touching;  // touching at the last evaluation
+  // Entries [first_begin[p], first_begin[p + 1]) have i == p (n + 1 values).
+  std::vector<std::int32_t> first_begin;
+  std::size_t size() const { return i.size(); }
+};
+
+// Scratch of the pair pass, per slot: the touching pairs' results, compact (dem/pair_kernel.hpp).
+struct ContactScratch {
+  std::vector<double> dn, ds, fx, fy, ft, ratio, dashpot, friction;
+  std::vector<std::int32_t> sliding;
+  void resize(std::size_t m) {
+    for (auto* v : {&dn, &ds, &fx, &fy, &ft, &ratio, &dashpot, &friction}) v->resize(m);
+    sliding.resize(m);
+  }
+};
+
 class NeighbourList {
  public:
-  // dmax: largest diameter (m); skin (m) >= 0.
-  void configure(double width, double height, double dmax, double skin, std::size_t particles);
+  // dmax: largest diameter (m); skin (m) >= 0; threads: the most that will call build().
+  void configure(double width, double height, double dmax, double skin, std::size_t particles,
+                 int threads = 1);
 
-  // True when a particle has moved more than half the skin since the last build (or never built).
+  // Largest and second-largest squared displacement of particles [begin, end) since the last
+  // build; moved2[0] >= moved2[1].
+  void displacement(const Particles& p, std::size_t begin, std::size_t end, double moved2[2]) const;
+  // True when no build has been made, or when the two largest displacements (of all particles)
+  // sum to more than the skin: only then can a pair have come from beyond R_i + R_j + skin to
+  // touching, or a particle from beyond R + skin of a wall (its displacement alone above it).
+  bool stale(double largest, double second) const;
+  // The same test for all particles (serial callers).
   bool stale(const Particles& p) const;
-  // The same test for particles [begin, end) only (a thread's share).
-  bool stale(const Particles& p, std::size_t begin, std::size_t end) const;
+
   // Rebuilds the candidates at the particles' current positions, carrying over the history of
-  // pairs that remain (or taking it from `seed`, a saved history, when given).
-  void build(const Particles& p, const PairContacts* seed = nullptr);
+  // pairs that remain (or taking it from a saved history, import_history). Called by each of the
+  // T threads of a parallel region with its particles [begin, end) (ascending ranges that cover
+  // all particles, in thread order); it holds barriers, so every thread of the team must call
+  // it. Outside a parallel region: build(p).
+  void build(const Particles& p, int t, int T, std::size_t begin, std::size_t end);
+  void build(const Particles& p) { build(p, 0, 1, 0, p.size()); }
   // The touching pairs and their displacements, sorted by (i, j).
   void export_history(PairContacts& out) const;
   // Replaces the history with a saved one; the next stale() is true.
   void import_history(const PairContacts& saved);
 
-  std::size_t size() const { return i.size(); }
+  std::size_t size() const { return slots().size(); }
   std::int64_t builds() const { return builds_; }
+  bool built() const { return built_; }
 
-  // Per candidate pair.
-  std::vector<std::int32_t> i, j;
-  std::vector<double> dn, ds;           // m, normal and tangential (shear) displacement; 0 while apart
-  std::vector<std::uint8_t> touching;   // touching at the last evaluation
-  std::vector<double> fx, fy, ft;       // N: force on i (x, y) and its tangential component
-  std::vector<double> ratio;            // overlap ratio (0 while not touching)
-  std::vector<std::int32_t> active;     // scratch of the force pass: the touching slots
-  // Gather lists: entries [first_begin[p], first_begin[p + 1]) have i == p; the entries with
-  // j == p are second_pair[second_begin[p] .. second_begin[p + 1]), in ascending order.
-  std::vector<std::int32_t> first_begin, second_begin, second_pair;
-  // The same in one list per particle, in the order its forces are summed: the entries where
-  // it is second (stored as ~k: the force on it is minus the slot's), then those where it is
-  // first (k): gather[gather_begin[p] .. gather_begin[p + 1]).
-  std::vector<std::int32_t> gather_begin, gather;
+  const PairSlots& slots() const { return set_[cur_]; }
+  PairSlots& slots() { return set_[cur_]; }
+
+  // Scratch of the force pass, per slot: touching, coincident or apart; the touching slots (each
+  // thread's from its first slot on); their contacts' results.
+  std::vector<std::uint8_t> code;
+  std::vector<std::int32_t> active;
+  ContactScratch contact_scratch;
 
  private:
+  // One thread's pairs while a build runs (thread 0 writes straight into the new slot set).
+  struct Found {
+    std::vector<std::int32_t> i, j;
+    std::vector<double> dn, ds;
+    std::vector<std::uint8_t> touching;
+    std::vector<std::int32_t> near;   // scratch: one particle's partners
+    std::size_t count = 0;
+  };
+  void find_pairs(const Particles& p, bool carry, std::size_t begin, std::size_t end, Found& out,
+                  std::vector<std::int32_t>& first_begin);
+  void merge_seed();
+
   CellGrid grid_;
   double skin_ = 0.0;
   std::vector<double> x_ref_, y_ref_;
   bool built_ = false;
-  bool built_once_ = false;  // the live arrays and first_begin hold a list (its history)
+  bool built_once_ = false;  // the slot set holds a list (its history)
   bool seeded_ = false;
   PairContacts seed_;
   std::int64_t builds_ = 0;
-  std::vector<std::int32_t> counts_;
-  // Scratch of build(), swapped with the live arrays (capacity kept: no allocation once warm).
-  std::vector<std::int32_t> ni_, nj_, near_;
-  std::vector<double> ndn_, nds_;
-  std::vector<std::uint8_t> nt_;
+  PairSlots set_[2];  // the current slot set and the one the next build writes
+  int cur_ = 0;
+  std::vector<Found> found_;     // per thread (found_[0] is used only for its counts and scratch)
+  std::vector<std::size_t> offset_;  // per thread: where its pairs start in the new set
 };
 
 }  // namespace fluidbed
