@@ -1,0 +1,300 @@
+#include "cli/view_headless.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "chart/chart.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "core/steps.hpp"
+#include "render/gl_context.hpp"
+#include "render/image.hpp"
+#include "render/renderer.hpp"
+#include "render/video_writer.hpp"
+#include "sim/checks.hpp"
+#include "view/curve_chart.hpp"
+#include "view/engine.hpp"
+#include "view/live_curve.hpp"
+#include "view/regime_watch.hpp"
+#include "view/script_runner.hpp"
+
+namespace fluidbed::app {
+namespace {
+
+constexpr double kDpWindow = 4.0;  // s of dp against time beside the bed
+
+// `src` (chart pixels, RGB rows from the top) into `dst` at (x0, y0).
+void paste(render::Image& dst, const chart::Image& src, int x0, int y0) {
+  const auto& px = src.pixels();
+  for (int y = 0; y < src.height() && y0 + y < dst.height; ++y) {
+    const auto n = static_cast<std::size_t>(std::min(src.width(), dst.width - x0)) * 3;
+    std::copy_n(
+        px.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(src.width()) * 3, n,
+        dst.rgb.data() + (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(dst.width) +
+                          static_cast<std::size_t>(x0)) *
+                             3);
+  }
+}
+
+// Pictures of what the window would show: the bed (renderer, caption band, regime), and for a
+// bed with gas the live curve and dp against time on the right.
+class Painter {
+ public:
+  Painter(const FrameOptions& fo, bool gas)
+      : fo_(fo), gas_(gas), font_(chart::Font::load({fo.font})) {
+    context_ = render::make_context("osmesa", fo_.width, fo_.height);
+    renderer_ = std::make_unique<render::Renderer>(*context_, fo_.font);
+  }
+
+  render::Image paint(const Snapshot& snap, const render::RenderSettings& look,
+                      const CurveState& curve, const std::deque<std::pair<double, double>>& dp) {
+    const int side = gas_ ? static_cast<int>(std::lround(0.4 * fo_.width)) : 0;
+    render::Image frame = renderer_->render_frame(snap, look, fo_.width - side, fo_.height);
+    if (side == 0) return frame;
+    render::Image out;
+    out.width = fo_.width;
+    out.height = fo_.height;
+    out.rgb.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * 3,
+                   255);
+    for (int y = 0; y < frame.height; ++y)
+      std::copy_n(
+          frame.pixel(0, y), static_cast<std::size_t>(frame.width) * 3,
+          out.rgb.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(out.width) * 3);
+    // The curve changes only when a point is added: drawn again then.
+    const int curve_h = fo_.height * 11 / 20;
+    if (!curve_img_ || curve.version != curve_version_ || curve_img_->height() != curve_h) {
+      chart::Chart c = curve_chart(curve);
+      c.title = "Fig. 6 as it builds: mean dp against U";
+      curve_img_ = std::make_unique<chart::Image>(chart::render(c, side, curve_h, font_));
+      curve_version_ = curve.version;
+    }
+    paste(out, *curve_img_, fo_.width - side, 0);
+    chart::Chart d;
+    d.title = "dp against time";
+    d.x.label = "t (s)";
+    d.y.label = "dp (Pa)";
+    d.legend = false;
+    chart::Series s;
+    for (const auto& [t, p] : dp) {
+      s.x.push_back(t);
+      s.y.push_back(p);
+    }
+    if (s.x.size() < 2) {
+      s.x = {snap.time, snap.time + 1e-3};
+      s.y = {snap.dp, snap.dp};
+    }
+    d.series.push_back(std::move(s));
+    d.hlines.push_back({curve.weight_per_area, "W/A", {90, 90, 90}, true, 1.5});
+    paste(out, chart::render(d, side, fo_.height - curve_h, font_), fo_.width - side, curve_h);
+    return out;
+  }
+
+ private:
+  const FrameOptions& fo_;
+  bool gas_;
+  chart::Font font_;
+  std::unique_ptr<render::GlContext> context_;
+  std::unique_ptr<render::Renderer> renderer_;
+  std::unique_ptr<chart::Image> curve_img_;
+  std::uint64_t curve_version_ = 0;
+};
+
+// The script's commands without a window (ScriptTarget, view/script_runner.hpp): the gas, the
+// contact law, the live curve's times, captions, the outlines, the colours and layers, saved
+// curves and screenshots act at their simulated times; wait, zoom, track and recordings have no
+// meaning here and say so.
+class HeadlessTarget : public ScriptTarget {
+ public:
+  HeadlessTarget(ViewModel& model, LiveCurve& curve, RegimeWatch& regime,
+                 render::RenderSettings& look, const HeadlessView& o)
+      : model_(model), curve_(curve), regime_(regime), look_(look), o_(o) {}
+
+  std::function<void(const std::string&)> screenshot_taker;
+
+  void run_to(double t) override { target_step_ = steps_for(t, model_.sim().settings().time.dt); }
+  bool busy() override { return model_.sim().steps() < target_step_; }
+  bool stopped() const override { return quit_; }
+  void unsupported(const ScriptLine& l) override {
+    std::fprintf(stderr, "fluidbed view: headless: script line %d has no effect without a window\n",
+                 l.line);
+  }
+  double umf() const override { return o_.umf; }
+  bool velocity(double u) override {
+    model_.set_velocity(u);
+    curve_.velocity(model_.sim().time(), held());
+    return true;
+  }
+  bool ideal(bool on) override {
+    model_.set_ideal(on);
+    curve_.restart_hold(model_.sim().time());
+    return true;
+  }
+  bool stiffness(double k) override {
+    model_.set_stiffness(k);
+    curve_.restart_hold(model_.sim().time());
+    return true;
+  }
+  bool settle(double s) override {
+    curve_.set_times(model_.sim().time(), s, curve_.state().window);
+    return true;
+  }
+  bool average(double s) override {
+    curve_.set_times(model_.sim().time(), curve_.state().settle, s);
+    return true;
+  }
+  bool save_curve(const std::string& file) override {
+    if (std::filesystem::path(file).extension() == ".png")
+      curve_image(curve_.state(), o_.frames.font).write_png(file);
+    else
+      write_file_atomically(file,
+                            [&](std::ofstream& out) { write_curve_csv(out, curve_.state()); });
+    std::printf("wrote %s\n", file.c_str());
+    return true;
+  }
+  bool caption(const std::string& text) override {
+    look_.caption = text;
+    return true;
+  }
+  bool reset() override {
+    model_.reset();
+    regime_.restart(model_.sim());
+    curve_.clear(model_.sim().time(), held());
+    return true;
+  }
+  bool colour(const std::string& mode) override {
+    look_.colour_by = mode == "mixing" ? render::ColourBy::height : render::parse_colour_by(mode);
+    look_.range_min = look_.range_max = 0.0;
+    return true;
+  }
+  bool gas_arrows(bool on) override { return set(look_.gas_arrows, on); }
+  bool particle_arrows(bool on) override { return set(look_.particle_arrows, on); }
+  bool porosity(bool on) override { return set(look_.porosity_background, on); }
+  bool bubbles(bool on) override { return set(look_.bubble_outlines, on); }
+  bool screenshot(const std::string& file) override {
+    screenshot_taker(file);
+    return true;
+  }
+  bool quit() override {
+    quit_ = true;
+    return true;
+  }
+
+ private:
+  static bool set(bool& flag, bool on) {
+    flag = on;
+    return true;
+  }
+  double held() const {
+    return model_.sim().gas() ? model_.sim().gas()->superficial_velocity() : 0.0;
+  }
+  ViewModel& model_;
+  LiveCurve& curve_;
+  RegimeWatch& regime_;
+  render::RenderSettings& look_;
+  const HeadlessView& o_;
+  std::int64_t target_step_ = 0;  // of the last `at T`
+  bool quit_ = false;
+};
+
+}  // namespace
+
+int view_headless(const Settings& scene, const ViewScript& script, const HeadlessView& o) {
+  namespace fs = std::filesystem;
+  ViewModel model(scene);
+  const Simulation& sim0 = model.sim();
+  const double dt = scene.time.dt;
+  const bool gas = sim0.has_gas();
+  // The end: the script's quit (at the last time it named), else --until, else the scene's end.
+  double until = o.until >= 0.0 ? o.until : scene.time.end;
+  {
+    double t = 0.0;
+    for (const ScriptLine& l : script.lines) {
+      if (l.at >= 0.0) t = std::max(t, l.at);
+      if (l.kind == ScriptLine::Kind::quit) {
+        until = t;
+        break;
+      }
+    }
+  }
+  const std::int64_t last = steps_for(until, dt);
+  ViewEngine::Options eo;
+  LiveCurve curve(eo.settle, eo.average, check_scene(scene).figures.weight_per_area, sim0.time(),
+                  gas ? sim0.gas()->superficial_velocity() : 0.0);
+  RegimeWatch regime(scene, model.sim());
+  render::RenderSettings look = o.frames.look;
+  look.caption_band = true;
+  std::error_code ec;
+  fs::create_directories(o.out, ec);
+  if (o.frames.frames) fs::create_directories(fs::path(o.out) / "frames", ec);
+  if (ec) throw InputError("cannot create " + o.out + ": " + ec.message());
+  Painter painter(o.frames, gas);
+  std::unique_ptr<render::VideoWriter> video;
+  if (o.frames.video)
+    video = std::make_unique<render::VideoWriter>((fs::path(o.out) / "video.mp4").string(),
+                                                  o.frames.width & ~1, o.frames.height & ~1,
+                                                  o.frames.video_fps);
+  std::deque<std::pair<double, double>> dp;  // (t, dp) of the last kDpWindow seconds
+  const std::int64_t sample_every =
+      std::max<std::int64_t>(1, steps_for(std::max(scene.diagnostics.output_interval, dt), dt));
+  Snapshot snap;
+  const auto picture = [&] {
+    take_snapshot(model.sim(), snap);
+    if (const auto v = regime.view(); v && gas) {
+      look.bed_label = regime_words(*v);
+      if (look.bubble_outlines) snap.bubble_edges = v->edges;
+    }
+    return painter.paint(snap, look, curve.state(), dp);
+  };
+  // A frame every interval of simulated time stepped (a reset goes back in time, the video on).
+  const std::int64_t frame_every = std::max<std::int64_t>(1, steps_for(o.frames.interval, dt));
+  std::int64_t stepped = 0;
+  int frames = 0;
+  const auto frame_if_due = [&] {
+    if (stepped % frame_every != 0) return;
+    const render::Image img = picture();
+    if (o.frames.frames) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%06d.png", frames);
+      render::write_png((fs::path(o.out) / "frames" / name).string(), img);
+    }
+    if (video) video->write(img);
+    ++frames;
+  };
+
+  ScriptRunner runner(script.lines);
+  HeadlessTarget target(model, curve, regime, look, o);
+  target.screenshot_taker = [&](const std::string& file) {
+    const auto parent = fs::path(file).parent_path();
+    std::error_code e;
+    if (!parent.empty()) fs::create_directories(parent, e);
+    render::write_png(file, picture());
+    std::printf("wrote %s\n", file.c_str());
+  };
+  frame_if_due();
+  for (;;) {
+    runner.advance(target);
+    if (target.stopped() || model.sim().steps() >= last) break;
+    Simulation& sim = model.sim();
+    sim.step();  // a SimulationFailure ends the run: exit status 3, nothing more written
+    ++stepped;
+    regime.after_step(sim);
+    if (sim.steps() % sample_every == 0 && gas) {
+      curve.sample(sim.time(), sim.pressure_drop());
+      dp.emplace_back(sim.time(), sim.pressure_drop());
+      while (!dp.empty() && dp.front().first < sim.time() - kDpWindow) dp.pop_front();
+    }
+    frame_if_due();
+  }
+  if (video) video->close();
+  std::printf("wrote %d frames%s%s to %s (t = 0 to %.4g s)\n", frames,
+              o.frames.frames ? " (frames/)" : "", video ? " and video.mp4" : "", o.out.c_str(),
+              model.sim().time());
+  return 0;
+}
+
+}  // namespace fluidbed::app
