@@ -227,7 +227,10 @@ int main(int argc, char** argv) {
     if (*reproduce) return fluidbed::app::reproduce_command(reproduce_args);
     if (*exporter) return fluidbed::app::export_command(export_args);
     if (*study) return fluidbed::app::study_command(study_args);
-    if (*view) return fluidbed::app::view_command(view_args);
+    if (*view) {
+      view_args.frame_interval_given = view->count("--frame-interval") > 0;
+      return fluidbed::app::view_command(view_args);
+    }
     if (*check) return fluidbed::app::check_command(check_args);
     if (*keys) return fluidbed::app::keys_command(keys_args, command_docs(app));
   } catch (const fluidbed::InputError& e) {

@@ -110,7 +110,17 @@ int view_command(const ViewArgs& a) {
   if (!a.script.empty() && !a.lesson.empty())
     throw InputError("view takes --script FILE or --lesson NAME, not both");
   const std::string script_path = a.lesson.empty() ? a.script : lesson_file(a.lesson);
-  const ViewScript script = script_path.empty() ? ViewScript{} : load_view_script(script_path);
+  ViewScript script = script_path.empty() ? ViewScript{} : load_view_script(script_path);
+  const std::string out = a.out.empty() ? "out/view" : a.out;
+  if (!a.lesson.empty()) {
+    // A lesson's files (screenshots, saved curves, recordings) go into the output folder.
+    for (ScriptLine& l : script.lines) {
+      const bool file = l.kind == ScriptLine::Kind::screenshot ||
+                        l.kind == ScriptLine::Kind::record || l.kind == ScriptLine::Kind::curve;
+      if (file && std::filesystem::path(l.text).is_relative())
+        l.text = (std::filesystem::path(out) / l.text).string();
+    }
+  }
   std::string scene = a.run_like.scene;
   if (scene.empty() && !script.scene.empty()) scene = resolve_scene(script.scene, script_path);
   if (scene.empty()) scene = asset_dir() + "/scenes/teaching.toml";
@@ -119,8 +129,9 @@ int view_command(const ViewArgs& a) {
   refuse_unsafe_scene(s);
   s.threads = a.run_like.threads;
   check_script_against(script, s, script_path);
-  const std::string out = a.out.empty() ? "out/view" : a.out;
   FrameOptions fo = frame_options(with_run_names(a.output), asset_dir());
+  // A lesson's video in slow motion (x 2 at 25 frames per second), time to read its captions.
+  if (!a.lesson.empty() && !a.frame_interval_given) fo.interval = 0.02;
   const bool window = has_display();
 
   // The scene's own U_mf (the slider's scale and ticks, the presets): measured once, cached.

@@ -17,9 +17,10 @@ struct ViewArgs {
   std::string script;  // a view script (view/script.hpp); empty: interactive
   std::string lesson;  // a lesson of assets/lessons (its NAME.txt), run as a script
   bool list_lessons = false;
-  std::string out;        // screenshots, recordings, headless frames; empty: out/view
-  OutputArgs output;      // the look (colour, arrows, ...); frame_size: the window
-  double max_fps = 30.0;  // the window's drawing rate at most (0: no cap)
+  std::string out;                    // screenshots, recordings, headless frames; empty: out/view
+  OutputArgs output;                  // the look (colour, arrows, ...); frame_size: the window
+  double max_fps = 30.0;              // the window's drawing rate at most (0: no cap)
+  bool frame_interval_given = false;  // --frame-interval on the command line (lessons: 0.02 s)
   // The window's size when --frame-size is not given (the frames' default too, so `view --help`
   // says what opens).
   static constexpr const char* kWindowSize = "1280x720";

@@ -70,7 +70,7 @@ class Painter {
     if (!curve_img_ || curve.version != curve_version_ || curve_img_->height() != curve_h) {
       chart::Chart c = curve_chart(curve);
       c.title = "Fig. 6 as it builds: mean dp against U";
-      curve_img_ = std::make_unique<chart::Image>(chart::render(c, side, curve_h, font_));
+      curve_img_ = std::make_unique<chart::Image>(chart::render(c, side, curve_h, font_, scale()));
       curve_version_ = curve.version;
     }
     paste(out, *curve_img_, fo_.width - side, 0);
@@ -90,11 +90,15 @@ class Painter {
     }
     d.series.push_back(std::move(s));
     d.hlines.push_back({curve.weight_per_area, "W/A", {90, 90, 90}, true, 1.5});
-    paste(out, chart::render(d, side, fo_.height - curve_h, font_), fo_.width - side, curve_h);
+    paste(out, chart::render(d, side, fo_.height - curve_h, font_, scale()), fo_.width - side,
+          curve_h);
     return out;
   }
 
  private:
+  // The charts' text and lines as in an 800 x 500 chart at 720 px high (legible in a video).
+  double scale() const { return std::max(0.6, fo_.height / 720.0); }
+
   const FrameOptions& fo_;
   bool gas_;
   chart::Font font_;
@@ -209,8 +213,8 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
   const Simulation& sim0 = model.sim();
   const double dt = scene.time.dt;
   const bool gas = sim0.has_gas();
-  // The end: the script's quit (at the last time it named), else --until, else the scene's end.
-  double until = o.until >= 0.0 ? o.until : scene.time.end;
+  // The end: --until, else the script's quit (at the last time it named), else the scene's end.
+  double until = scene.time.end;
   {
     double t = 0.0;
     for (const ScriptLine& l : script.lines) {
@@ -221,6 +225,7 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
       }
     }
   }
+  if (o.until >= 0.0) until = o.until;
   const std::int64_t last = steps_for(until, dt);
   ViewEngine::Options eo;
   LiveCurve curve(eo.settle, eo.average, check_scene(scene).figures.weight_per_area, sim0.time(),
@@ -250,12 +255,12 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
     }
     return painter.paint(snap, look, curve.state(), dp);
   };
-  // A frame every interval of simulated time stepped (a reset goes back in time, the video on).
-  const std::int64_t frame_every = std::max<std::int64_t>(1, steps_for(o.frames.interval, dt));
+  // Frame k at the step nearest k intervals of simulated time stepped (a reset goes back in
+  // time, the video goes on).
   std::int64_t stepped = 0;
   int frames = 0;
   const auto frame_if_due = [&] {
-    if (stepped % frame_every != 0) return;
+    if (stepped != steps_for(static_cast<double>(frames) * o.frames.interval, dt)) return;
     const render::Image img = picture();
     if (o.frames.frames) {
       char name[32];

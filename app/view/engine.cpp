@@ -395,8 +395,8 @@ void ViewEngine::measure_speed(bool stopping) {
   speed_span_steps_ += sim.steps() - speed_steps0_;
   speed_t0_ = now;
   speed_steps0_ = sim.steps();
-  // A quarter second of stepping, or, before any figure, whatever the first short run gave.
-  const bool first = sim_s_per_wall_s_ == 0.0 && speed_span_steps_ > 0 && speed_span_s_ > 0.0;
+  // A quarter second of stepping, or, before any figure, the first runs once they make 20 ms.
+  const bool first = sim_s_per_wall_s_ == 0.0 && speed_span_steps_ > 0 && speed_span_s_ >= 0.02;
   if (speed_span_s_ >= 0.25 || first) {
     steps_per_s_ = static_cast<double>(speed_span_steps_) / speed_span_s_;
     sim_s_per_wall_s_ = steps_per_s_ * sim.settings().time.dt;
@@ -408,9 +408,7 @@ void ViewEngine::measure_speed(bool stopping) {
 void ViewEngine::loop() {
   using Clock = std::chrono::steady_clock;
   const auto publish_every = std::chrono::duration<double>(options_.publish_interval);
-  bool was_stepping = true;
-  speed_t0_ = Clock::now();
-  speed_steps0_ = model_.sim().steps();
+  bool was_stepping = false, first = true;
   while (!quit_.load()) {
     const bool idle =
         !error_.empty() || (!running_ && steps_left_ == 0 && until_step_ <= model_.sim().steps());
@@ -436,8 +434,8 @@ void ViewEngine::loop() {
         error_.empty() && (running_ || steps_left_ > 0 || until_step_ > sim.steps());
     if (!stepping) {
       if (was_stepping) measure_speed(true);
-      if (was_stepping || changed) stopped();
-      was_stepping = false;
+      if (was_stepping || changed || first) stopped();
+      was_stepping = first = false;
       continue;
     }
     if (!was_stepping) {

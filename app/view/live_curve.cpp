@@ -16,8 +16,7 @@ void check_times(double settle, double window) {
     throw InputError("the averaging window must be > 0 s (got " + std::to_string(window) + ")");
 }
 
-// Half a sample interval of slack on the window's ends: samples come at multiples of the output
-// interval, the window's ends anywhere.
+// Round-off on the window's start (samples and window ends are sums of time steps).
 constexpr double kSlack = 1e-9;
 
 }  // namespace
@@ -31,6 +30,7 @@ LiveCurve::LiveCurve(double settle, double window, double weight_per_area, doubl
 }
 
 void LiveCurve::clear(double t, double u) {
+  last_t_ = t;
   st_.branches.assign(1, CurveBranch{});  // the packed bed: the increasing branch
   st_.held_u = u;
   st_.umf = UmfFit{};
@@ -86,15 +86,19 @@ void LiveCurve::velocity(double t, double u) {
 }
 
 bool LiveCurve::sample(double t, double dp) {
+  // Half the spacing of the samples: the window ends at the sample nearest its end (samples come
+  // at the steps nearest their times, a step to either side).
+  const double half = last_t_ < t ? 0.5 * (t - last_t_) : 0.0;
+  last_t_ = t;
   if (taken_) return false;  // one point per hold: nothing more until a change
   const double to = avg_from_ + st_.window;
   bool added = false;
-  if (t > avg_from_ + kSlack && t <= to + kSlack && std::isfinite(dp)) {
+  if (t > avg_from_ + kSlack && t <= to + half && std::isfinite(dp)) {
     sum_ += dp;
     sum_sq_ += dp * dp;
     ++n_;
   }
-  if (t >= to - kSlack && n_ > 0) {
+  if (t >= to - half - kSlack && n_ > 0) {
     CurvePoint p;
     p.u = st_.held_u;
     p.samples = n_;

@@ -79,7 +79,8 @@ class LiveCurve {
   double avg_from_ = 0.0;  // s, the current hold's averaging window [avg_from_, avg_from_ + window]
   double sum_ = 0.0, sum_sq_ = 0.0;
   int n_ = 0;
-  bool taken_ = false;  // the current hold gave its point
+  bool taken_ = false;   // the current hold gave its point
+  double last_t_ = 0.0;  // s, the last sample's time
 };
 
 // The points as CSV: one row per point taken (a turning point once, on the branch it was taken

@@ -11,6 +11,7 @@
 #include "render/colour_map.hpp"
 #include "run/umf_estimate.hpp"
 #include "view/presets.hpp"
+#include "view/status_words.hpp"
 #include "view/window.hpp"
 
 namespace fluidbed::app {
@@ -92,12 +93,10 @@ void Viewer::draw_particle_info(std::size_t i, bool tooltip) {
               c.particles.size(), c.walls, i < s.overlap.size() ? s.overlap[i] : c.max_overlap);
 }
 
-bool Viewer::running_in_words() const {
+bool Viewer::script_runs_the_bed() const {
   // A script that runs the bed from one `at T` to the next is running it, even at the instant
   // it stopped there for a screenshot.
-  const bool script_running =
-      !opt_.script.empty() && !script_finished_ && script_wants_running_ && !quit_;
-  return status_.stepping || status_.running || script_running;
+  return !opt_.script.empty() && !script_finished_ && script_wants_running_ && !quit_;
 }
 
 void Viewer::draw_top_block() {
@@ -135,30 +134,22 @@ void Viewer::draw_top_block() {
   }
 
   // Time, what the bed is doing, and its speed in words a class understands.
-  std::string state;
-  if (!st.error.empty())
-    state = "stopped: the simulation failed";
-  else if (st.run_until >= 0.0)
-    state = fmt("running to t = %.3f s", st.run_until) + (opt_.script.empty() ? "" : " (script)");
-  else
-    state = running_in_words() ? "running" : "paused";
-  ImGui::Text("t = %.4f s   step %lld   %s", st.time, static_cast<long long>(st.steps),
-              state.c_str());
+  const std::string state = run_state_words(st, script_runs_the_bed());
+  ImGui::Text("t = %.4f s   step %lld", st.time, static_cast<long long>(st.steps));
+  ImGui::TextUnformatted(state.c_str());
   note_widget("state", state);
-  std::string speed;
-  const double r = st.sim_s_per_wall_s;
-  if (r <= 0.0)
-    speed = "speed: not measured yet";
-  else if (r < 0.95)
-    speed = fmt("slow motion x %.1f", 1.0 / r);
-  else if (r <= 1.05)
-    speed = "real time";
-  else
-    speed = fmt("fast motion x %.1f", r);
-  if (r > 0.0) speed += fmt(" (%.3g sim s per wall s", r) + fmt(", %.0f steps/s)", st.steps_per_s);
-  ImGui::TextWrapped("%s", speed.c_str());
+  const std::string speed = speed_words(st.sim_s_per_wall_s);
+  ImGui::TextUnformatted(speed.c_str());
   note_widget("speed", speed);
-  ImGui::TextDisabled("window %.0f frames/s", static_cast<double>(ImGui::GetIO().Framerate));
+  ImGui::TextDisabled("%.0f steps/s, window %.0f frames/s", st.steps_per_s,
+                      static_cast<double>(ImGui::GetIO().Framerate));
+  ImGui::Separator();
+}
+
+// What went wrong, what to mind, what was written: at the top of the scrolling sections (the
+// block above keeps its height, so the buttons never move under the pointer).
+void Viewer::draw_messages() {
+  const EngineStatus& st = status_;
   if (!st.error.empty()) wrapped(kRed, st.error);
   note_widget("error", st.error.empty() ? "none" : "shown");
   if (!st.refusal.empty()) wrapped(kOrange, st.refusal);
@@ -176,7 +167,6 @@ void Viewer::draw_top_block() {
     }
   }
   if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
-  ImGui::Separator();
 }
 
 void Viewer::draw_gas_section() {
@@ -201,15 +191,25 @@ void Viewer::draw_gas_section() {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float h = ImGui::GetFontSize();
     const ImVec2 row = ImGui::GetCursorScreenPos();
-    const auto tick = [&](double u, const char* text, ImU32 colour) {
-      if (!(u > 0.0) || u > velocity_top_) return;
-      const float x = x_of(u);
-      dl->AddLine(ImVec2(x, b.y), ImVec2(x, b.y + 0.35f * h), colour, 2.0f);
-      const float w = ImGui::CalcTextSize(text).x;
-      dl->AddText(ImVec2(std::clamp(x - 0.5f * w, a.x, b.x - w), row.y + 0.1f * h), colour, text);
+    // Two labels that would overlap are put side by side, the lower velocity's on the left.
+    struct Tick {
+      double u;
+      const char* text;
+      ImU32 colour;
     };
-    tick(opt_.umf, "U_mf", IM_COL32(255, 200, 90, 255));
-    tick(opt_.scene_velocity, "scene", IM_COL32(160, 200, 255, 255));
+    Tick ticks[] = {{opt_.umf, "U_mf", IM_COL32(255, 200, 90, 255)},
+                    {opt_.scene_velocity, "scene", IM_COL32(160, 200, 255, 255)}};
+    if (ticks[1].u < ticks[0].u) std::swap(ticks[0], ticks[1]);
+    float right = a.x - 1e9f;
+    for (const Tick& t : ticks) {
+      if (!(t.u > 0.0) || t.u > velocity_top_) continue;
+      const float x = x_of(t.u);
+      dl->AddLine(ImVec2(x, b.y), ImVec2(x, b.y + 0.35f * h), t.colour, 2.0f);
+      const float w = ImGui::CalcTextSize(t.text).x;
+      const float left = std::clamp(std::max(x - 0.5f * w, right + 0.4f * h), a.x, b.x - w);
+      dl->AddText(ImVec2(left, row.y + 0.1f * h), t.colour, t.text);
+      right = left + w;
+    }
     ImGui::Dummy(ImVec2(b.x - a.x, 1.2f * h));
   }
   ImGui::TextDisabled("Ctrl+click the slider to type a velocity");
@@ -344,6 +344,7 @@ void Viewer::draw_panel() {
   ImGui::PushFont(font);
   draw_top_block();
   ImGui::BeginChild("sections");
+  draw_messages();
   draw_gas_section();
   draw_curve_section();
   draw_bed_section();

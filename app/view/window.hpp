@@ -86,6 +86,7 @@ class Viewer : private ScriptTarget {
   // panel.cpp, panel_plots.cpp
   void draw_panel();
   void draw_top_block();
+  void draw_messages();
   void draw_gas_section();
   void draw_curve_section();
   void draw_bed_section();
@@ -105,7 +106,7 @@ class Viewer : private ScriptTarget {
   void toggle_run();
   void cycle_colour();
   void set_velocity(double u);
-  bool running_in_words() const;  // the panel's run state: stepping, or a script running the bed
+  bool script_runs_the_bed() const;  // a script is running the bed from one `at T` to the next
   std::string next_name(const std::string& stem, const std::string& ext);
   // Frame pixels (the renderer's frame, in the bed area) <-> window pixels.
   float to_window_x(double fx) const;

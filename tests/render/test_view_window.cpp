@@ -14,6 +14,7 @@
 #include "../view/view_scene.hpp"
 #include "render/picking.hpp"
 #include "render_support.hpp"
+#include "view_support.hpp"
 
 namespace fluidbed::testing {
 namespace {
@@ -97,69 +98,6 @@ TEST(ViewPicking, ContactsAreOverlapsAndWalls) {
 
 // ---------------------------------------------------------------------------------------------
 // The program.
-
-struct ViewRun {
-  int status;
-  std::string output;
-};
-
-// Runs `fluidbed view ARGS` with its output in DIR/log.txt (each test has its own folder: ctest
-// runs them side by side).
-ViewRun run_view(const std::filesystem::path& dir, const std::string& args,
-                 const std::string& env = "") {
-  const std::string log = (dir / "log.txt").string();
-  const std::string cmd =
-      env + " " + std::string(FLUIDBED_BINARY) + " view " + args + " > " + log + " 2>&1";
-  const int raw = std::system(cmd.c_str());
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text};
-}
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  // Per process: ctest runs this binary's tests side by side.
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("fluidbed_view_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
-
-std::string write_file(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-  return p.string();
-}
-
-struct Png {
-  int w = 0, h = 0;
-  std::vector<unsigned char> rgb;
-  const unsigned char* at(int x, int y) const {
-    return rgb.data() + 3 * (static_cast<std::size_t>(y) * w + x);
-  }
-};
-
-Png read_png(const std::string& path) {
-  Png p;
-  int n = 0;
-  unsigned char* data = stbi_load(path.c_str(), &p.w, &p.h, &n, 3);
-  if (data) {
-    p.rgb.assign(data, data + static_cast<std::size_t>(p.w) * p.h * 3);
-    stbi_image_free(data);
-  }
-  return p;
-}
-
-// Pixels of [x0, x1) x [y0, y1) for which `pred(r, g, b)` holds.
-template <class P>
-int count_pixels(const Png& p, int x0, int x1, int y0, int y1, P pred) {
-  int n = 0;
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) {
-      const unsigned char* c = p.at(x, y);
-      n += pred(c[0], c[1], c[2]) ? 1 : 0;
-    }
-  return n;
-}
 
 TEST(ViewWindow, ScriptedRunChangesTheGasAndTakesAScreenshot) {
   if (!std::getenv("DISPLAY")) {

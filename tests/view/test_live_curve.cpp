@@ -13,6 +13,7 @@
 #include "view/presets.hpp"
 #include "view/script.hpp"
 #include "view/script_runner.hpp"
+#include "view/status_words.hpp"
 
 namespace fluidbed {
 namespace {
@@ -260,6 +261,29 @@ TEST(ScriptRunner, PresetsAreMultiplesOfTheScenesUmf) {
     EXPECT_GT(p.umf_multiple, last) << p.name;
     last = p.umf_multiple;
   }
+}
+
+}  // namespace
+}  // namespace fluidbed
+
+namespace fluidbed {
+namespace {
+
+// A screenshot a script takes at `at T` shows the bed as the script runs it, and the speed it
+// measured; the speed in words beside the figure.
+TEST(StatusWords, RunningWhileAScriptRunsTheBedAndSlowMotionBesideTheFigure) {
+  app::EngineStatus st;
+  EXPECT_EQ(app::run_state_words(st, false), "paused");
+  EXPECT_EQ(app::run_state_words(st, true), "running");  // stopped at `at T` for a screenshot
+  st.run_until = 0.3;
+  st.stepping = true;
+  EXPECT_EQ(app::run_state_words(st, true), "running to t = 0.300 s (script)");
+  st.error = "the simulation failed: ...";
+  EXPECT_EQ(app::run_state_words(st, true), "stopped: the simulation failed");
+  EXPECT_EQ(app::speed_words(1.0 / 15.0), "slow motion x 15.0 (0.0667 sim s per wall s)");
+  EXPECT_EQ(app::speed_words(1.02), "real time (1.02 sim s per wall s)");
+  EXPECT_EQ(app::speed_words(2.0), "fast motion x 2.0 (2 sim s per wall s)");
+  EXPECT_EQ(app::speed_words(0.0), "speed: not measured yet");
 }
 
 }  // namespace

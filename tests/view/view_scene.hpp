@@ -29,6 +29,32 @@ particle_steps_per_gas_step = 2
 end = 1.0
 )";
 
-inline Settings view_test_settings() { return parse_scene(kViewTestScene, "view_test"); }
+inline Settings view_test_settings() {
+  return parse_scene(kViewTestScene, "view_test");
+}
+
+// A small bed shaped like the paper's (six times as high as wide), so that a window shows it with
+// its close-up beside it, as it shows the paper's bed.
+inline const char* kViewTallScene = R"(
+[scene]
+name = "view_tall"
+[domain]
+width = 0.03
+height = 0.18
+[particles]
+count = 90
+fill_height = 0.07
+[gas]
+cells_x = 3
+cells_y = 18
+[inlet]
+kind = "jet"
+superficial_velocity = 2.0
+jet_width = 0.006
+[coupling]
+particle_steps_per_gas_step = 2
+[time]
+end = 1.0
+)";
 
 }  // namespace fluidbed::testing
