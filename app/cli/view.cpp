@@ -141,8 +141,9 @@ int view_command(const ViewArgs& a) {
       std::printf("fluidbed view: %s\n", line.c_str());
       std::fflush(stdout);
     });
-    std::printf("fluidbed view: U_mf = %.3f m/s (%s%s)\n", umf.umf, UmfEstimate::kMethod,
-                umf.from_cache ? "; cached" : "");
+    std::printf("fluidbed view: U_mf = %.3f m/s (%s; %s)\n", umf.umf, UmfEstimate::kMethod,
+                umf.from_cache ? "cached"
+                               : (std::to_string(umf.evaluations) + " fixed-bed runs").c_str());
   }
 
   HeadlessView hv;

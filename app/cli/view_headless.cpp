@@ -244,8 +244,11 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
                                                   o.frames.width & ~1, o.frames.height & ~1,
                                                   o.frames.video_fps);
   std::deque<std::pair<double, double>> dp;  // (t, dp) of the last kDpWindow seconds
-  const std::int64_t sample_every =
-      std::max<std::int64_t>(1, steps_for(std::max(scene.diagnostics.output_interval, dt), dt));
+  // dp samples every output interval of simulated time, at the steps the engine thread takes
+  // them (ViewEngine::sample_after_step): the live curve is the window's.
+  const double sample_interval =
+      scene.diagnostics.output_interval > 0.0 ? scene.diagnostics.output_interval : 1e-3;
+  double next_sample = sim0.time() + sample_interval;
   Snapshot snap;
   const auto picture = [&] {
     take_snapshot(model.sim(), snap);
@@ -288,7 +291,10 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
     sim.step();  // a SimulationFailure ends the run: exit status 3, nothing more written
     ++stepped;
     regime.after_step(sim);
-    if (sim.steps() % sample_every == 0 && gas) {
+    if (sim.time() < next_sample - sample_interval - 0.5 * dt)  // a reset went back in time
+      next_sample = sample_interval * std::floor(sim.time() / sample_interval + 1.0);
+    if (sim.time() + 0.5 * dt >= next_sample && gas) {
+      next_sample += sample_interval;
       curve.sample(sim.time(), sim.pressure_drop());
       dp.emplace_back(sim.time(), sim.pressure_drop());
       while (!dp.empty() && dp.front().first < sim.time() - kDpWindow) dp.pop_front();

@@ -60,61 +60,81 @@ void LiveCurve::set_times(double t, double settle, double window) {
 
 void LiveCurve::velocity(double t, double u) {
   if (u == st_.held_u) return;
-  const bool up = u > st_.held_u;
-  CurveBranch& cur = st_.branches.back();
-  const bool own_points = std::any_of(cur.points.begin(), cur.points.end(),
-                                      [](const CurvePoint& p) { return !p.shared; });
-  if (cur.increasing != up) {
-    if (!own_points && st_.branches.size() > 1) {
-      // A turn and back before any point was taken: the previous branch goes on.
-      st_.branches.pop_back();
-    } else if (!own_points) {
-      cur.increasing = up;  // nothing on it yet: it takes the direction
-    } else {
-      CurveBranch next;
-      next.increasing = up;
-      CurvePoint turn = cur.points.back();
-      turn.shared = true;
-      next.points.push_back(turn);
-      st_.branches.push_back(std::move(next));
-    }
-    ++st_.version;
-    refit();
-  }
+  finish_hold(t);
   st_.held_u = u;
+  // The direction: against the last point taken (a slider dragged past its mark and back is
+  // still one change); before any point, the packed bed's increasing branch.
+  const CurvePoint* last = last_point();
+  if (last && u != last->u) {
+    const bool up = u > last->u;
+    CurveBranch& cur = st_.branches.back();
+    const bool own_points = std::any_of(cur.points.begin(), cur.points.end(),
+                                        [](const CurvePoint& p) { return !p.shared; });
+    if (cur.increasing != up) {
+      if (!own_points && st_.branches.size() > 1) {
+        st_.branches.pop_back();  // a turn and back before a point: the previous branch goes on
+      } else if (!own_points) {
+        cur.increasing = up;
+      } else {
+        CurveBranch next;  // from the turning point, which belongs to both
+        next.increasing = up;
+        CurvePoint turn = cur.points.back();
+        turn.shared = true;
+        next.points.push_back(turn);
+        st_.branches.push_back(std::move(next));
+      }
+      ++st_.version;
+      refit();
+    }
+  }
   restart_hold(t);
+}
+
+const CurvePoint* LiveCurve::last_point() const {
+  for (auto b = st_.branches.rbegin(); b != st_.branches.rend(); ++b)
+    if (!b->points.empty()) return &b->points.back();
+  return nullptr;
 }
 
 bool LiveCurve::sample(double t, double dp) {
   // Half the spacing of the samples: the window ends at the sample nearest its end (samples come
   // at the steps nearest their times, a step to either side).
-  const double half = last_t_ < t ? 0.5 * (t - last_t_) : 0.0;
+  if (last_t_ < t) spacing_ = t - last_t_;
   last_t_ = t;
   if (taken_) return false;  // one point per hold: nothing more until a change
+  const double half = 0.5 * spacing_;
   const double to = avg_from_ + st_.window;
-  bool added = false;
   if (t > avg_from_ + kSlack && t <= to + half && std::isfinite(dp)) {
     sum_ += dp;
     sum_sq_ += dp * dp;
     ++n_;
   }
-  if (t >= to - half - kSlack && n_ > 0) {
-    CurvePoint p;
-    p.u = st_.held_u;
-    p.samples = n_;
-    p.dp_mean = sum_ / n_;
-    p.dp_std = std::sqrt(std::max(0.0, sum_sq_ / n_ - p.dp_mean * p.dp_mean));
-    p.t_from = avg_from_;
-    p.t_to = to;
-    p.settle = avg_from_ - st_.held_since;
-    st_.branches.back().points.push_back(p);
-    ++st_.version;
-    refit();
-    added = true;
-    taken_ = true;
-  }
+  const bool added = t >= to - half - kSlack && take_point();
   update_phase(t);
   return added;
+}
+
+void LiveCurve::finish_hold(double t) {
+  // A change that comes within a sample and a half of the window's end (the samples' grid need
+  // not meet it) completes the point with what was averaged.
+  if (!taken_ && t >= avg_from_ + st_.window - 1.5 * spacing_ - kSlack) take_point();
+}
+
+bool LiveCurve::take_point() {
+  if (n_ <= 0) return false;
+  CurvePoint p;
+  p.u = st_.held_u;
+  p.samples = n_;
+  p.dp_mean = sum_ / n_;
+  p.dp_std = std::sqrt(std::max(0.0, sum_sq_ / n_ - p.dp_mean * p.dp_mean));
+  p.t_from = avg_from_;
+  p.t_to = avg_from_ + st_.window;
+  p.settle = avg_from_ - st_.held_since;
+  st_.branches.back().points.push_back(p);
+  ++st_.version;
+  refit();
+  taken_ = true;
+  return true;
 }
 
 void LiveCurve::update_phase(double t) {

@@ -3,9 +3,10 @@
 // built as the class watches. A held velocity gives one point: after a settling time (the bed
 // finds its new state) the pressure drop is averaged over a window of simulated time, as `sweep`
 // averages each of its runs (eq 30). The point goes on the branch of the direction of the last
-// change: increasing (the bed starts packed, so the first velocity is on the increasing branch)
-// or decreasing; a change against the branch's direction starts a new branch from the last
-// point (the turning point belongs to both, as the sweep's top run does). U_mf is fitted to the
+// change, measured from the last point taken (a slider dragged past its mark and back is one
+// change): increasing (the bed starts packed, so until a point is taken the branch is the
+// increasing one) or decreasing; a change against the branch's direction starts a new branch
+// from the last point (the turning point belongs to both, as the sweep's top run does). U_mf is fitted to the
 // last decreasing branch with the sweep's fit (analysis/umf_fit.hpp) and shown once that fit
 // finds it inside the branch's range. No threads, no GL: the engine thread and the headless
 // viewer each own one and feed it the simulated time, the held velocity and dp.
@@ -74,13 +75,17 @@ class LiveCurve {
  private:
   void update_phase(double t);
   void refit();
+  void finish_hold(double t);
+  bool take_point();
+  const CurvePoint* last_point() const;
 
   CurveState st_;
   double avg_from_ = 0.0;  // s, the current hold's averaging window [avg_from_, avg_from_ + window]
   double sum_ = 0.0, sum_sq_ = 0.0;
   int n_ = 0;
   bool taken_ = false;   // the current hold gave its point
-  double last_t_ = 0.0;  // s, the last sample's time
+  double last_t_ = 0.0;   // s, the last sample's time
+  double spacing_ = 0.0;  // s between the last two samples
 };
 
 // The points as CSV: one row per point taken (a turning point once, on the branch it was taken

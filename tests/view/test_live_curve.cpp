@@ -107,11 +107,35 @@ TEST(LiveCurve, ATurnAndBackBeforeAnyPointKeepsTheBranch) {
   ASSERT_EQ(c.state().branches.size(), 1u);
   feed(c, t + 0.05, t + 0.2, [](double) { return 25.0; });
   EXPECT_EQ(c.state().branches[0].points.size(), 3u);
-  // The first change of an empty branch only sets its direction.
+  // Before any point the bed is the packed one: a first change down stays on the increasing
+  // branch.
   LiveCurve d(0.0, 0.1, 100.0, 0.0, 3.0);
-  d.velocity(0.01, 2.0);
+  d.velocity(0.0, 2.0);
+  feed(d, 0.0, 0.1, [](double) { return 5.0; });
   ASSERT_EQ(d.state().branches.size(), 1u);
-  EXPECT_FALSE(d.state().branches[0].increasing);
+  EXPECT_TRUE(d.state().branches[0].increasing);
+  ASSERT_EQ(d.state().branches[0].points.size(), 1u);
+  // A slider dragged from 2 past 3 and back to 3 m/s: one change up.
+  d.velocity(0.1, 3.2);
+  d.velocity(0.11, 3.0);
+  EXPECT_EQ(d.state().branches.size(), 1u);
+}
+
+// Samples on a grid that misses the window's end: a change within a sample and a half of it
+// still completes the point.
+TEST(LiveCurve, AChangeAtTheWindowsEndCompletesThePoint) {
+  LiveCurve c(0.5, 1.0, 100.0, 0.0, 1.0);
+  const double spacing = 1e-3;
+  double t = 0.2e-3 - spacing;  // the grid's last sample before 1.5 s comes 0.8 ms before it
+  while (t + spacing < 1.5) {
+    t += spacing;
+    c.sample(t, 42.0);
+  }
+  EXPECT_TRUE(c.state().branches[0].points.empty());  // the last sample before 1.5 s
+  c.velocity(1.5, 2.0);
+  ASSERT_EQ(c.state().branches[0].points.size(), 1u);
+  EXPECT_EQ(c.state().branches[0].points[0].u, 1.0);
+  EXPECT_NEAR(c.state().branches[0].points[0].dp_mean, 42.0, 1e-12);
 }
 
 TEST(LiveCurve, FitsUmfOnTheDecreasingBranchAsTheSweepDoes) {
