@@ -141,9 +141,9 @@ int view_command(const ViewArgs& a) {
       std::printf("fluidbed view: %s\n", line.c_str());
       std::fflush(stdout);
     });
-    std::printf("fluidbed view: U_mf = %.3f m/s (%s; %s)\n", umf.umf, UmfEstimate::kMethod,
-                umf.from_cache ? "cached"
-                               : (std::to_string(umf.evaluations) + " fixed-bed runs").c_str());
+    std::printf(
+        "fluidbed view: U_mf = %.3f m/s (%s; %s)\n", umf.umf, UmfEstimate::kMethod,
+        umf.from_cache ? "cached" : (std::to_string(umf.evaluations) + " fixed-bed runs").c_str());
   }
 
   HeadlessView hv;
@@ -207,6 +207,7 @@ int view_command(const ViewArgs& a) {
         static_cast<double>(st.engine_steps) * s.time.dt / st.engine_seconds, es.particles);
   std::printf("viewer: stopped at t = %.6f s, step %lld, U = %.4f m/s\n", es.time,
               static_cast<long long>(es.steps), es.superficial_velocity);
+  if (s.gas.enabled) std::printf("viewer: %s\n", describe_curve(es.curve).c_str());
   return status;
 }
 

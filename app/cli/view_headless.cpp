@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <deque>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <mutex>
+#include <thread>
 
 #include "chart/chart.hpp"
 #include "core/atomic_file.hpp"
@@ -106,6 +110,123 @@ class Painter {
   std::unique_ptr<render::Renderer> renderer_;
   std::unique_ptr<chart::Image> curve_img_;
   std::uint64_t curve_version_ = 0;
+};
+
+// What one picture shows, copied on the engine's side: the worker draws it while the bed steps on.
+struct PictureJob {
+  std::shared_ptr<Snapshot> snapshot;
+  render::RenderSettings look;
+  CurveState curve;
+  std::deque<std::pair<double, double>> dp;
+  int frame = -1;    // >= 0: a frame of the film (PNG and video)
+  std::string file;  // else: a screenshot
+};
+
+// Draws, encodes and writes the pictures on its own thread (its own GL context), so the bed and
+// the pictures share the two cores; a bounded queue: the bed waits only when the pictures are
+// that far behind. A failure to write ends the run at the next picture asked for.
+class PictureWorker {
+ public:
+  PictureWorker(const HeadlessView& o, bool gas) : o_(o), gas_(gas) {
+    thread_ = std::thread([this] { work(); });
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return ready_ || error_; });
+    rethrow();
+  }
+  ~PictureWorker() {
+    {
+      std::lock_guard lock(mutex_);
+      closing_ = true;
+      if (!finished_) jobs_.clear();  // an aborted run: the video is not finished
+    }
+    changed_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+  void push(PictureJob job) {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return jobs_.size() < kQueue || error_; });
+    rethrow();
+    jobs_.push_back(std::move(job));
+    changed_.notify_all();
+  }
+  // Waits for every picture, closes the video.
+  void finish() {
+    {
+      std::lock_guard lock(mutex_);
+      finished_ = closing_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();
+    std::lock_guard lock(mutex_);
+    rethrow();
+  }
+
+ private:
+  static constexpr std::size_t kQueue = 4;
+  void rethrow() {
+    if (error_) std::rethrow_exception(error_);
+  }
+  void work() {
+    namespace fs = std::filesystem;
+    try {
+      Painter painter(o_.frames, gas_);
+      std::unique_ptr<render::VideoWriter> video;
+      if (o_.frames.video)
+        video = std::make_unique<render::VideoWriter>((fs::path(o_.out) / "video.mp4").string(),
+                                                      o_.frames.width & ~1, o_.frames.height & ~1,
+                                                      o_.frames.video_fps);
+      {
+        std::lock_guard lock(mutex_);
+        ready_ = true;
+      }
+      changed_.notify_all();
+      for (;;) {
+        PictureJob job;
+        {
+          std::unique_lock lock(mutex_);
+          changed_.wait(lock, [this] { return !jobs_.empty() || closing_; });
+          if (jobs_.empty()) break;
+          job = std::move(jobs_.front());
+          jobs_.pop_front();
+        }
+        changed_.notify_all();
+        const render::Image img = painter.paint(*job.snapshot, job.look, job.curve, job.dp);
+        if (job.frame < 0) {
+          const auto parent = fs::path(job.file).parent_path();
+          std::error_code e;
+          if (!parent.empty()) fs::create_directories(parent, e);
+          render::write_png(job.file, img);
+          std::printf("wrote %s\n", job.file.c_str());
+          continue;
+        }
+        if (o_.frames.frames) {
+          char name[32];
+          std::snprintf(name, sizeof name, "frame_%06d.png", job.frame);
+          render::write_png((fs::path(o_.out) / "frames" / name).string(), img);
+        }
+        if (video) video->write(img);
+      }
+      bool finished = false;
+      {
+        std::lock_guard lock(mutex_);
+        finished = finished_;
+      }
+      if (video && finished) video->close();  // an aborted run leaves no video
+    } catch (...) {
+      std::lock_guard lock(mutex_);
+      error_ = std::current_exception();
+    }
+    changed_.notify_all();
+  }
+
+  const HeadlessView& o_;
+  bool gas_;
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<PictureJob> jobs_;
+  bool ready_ = false, closing_ = false, finished_ = false;
+  std::exception_ptr error_;
 };
 
 // The script's commands without a window (ScriptTarget, view/script_runner.hpp): the gas, the
@@ -237,26 +358,27 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
   fs::create_directories(o.out, ec);
   if (o.frames.frames) fs::create_directories(fs::path(o.out) / "frames", ec);
   if (ec) throw InputError("cannot create " + o.out + ": " + ec.message());
-  Painter painter(o.frames, gas);
-  std::unique_ptr<render::VideoWriter> video;
-  if (o.frames.video)
-    video = std::make_unique<render::VideoWriter>((fs::path(o.out) / "video.mp4").string(),
-                                                  o.frames.width & ~1, o.frames.height & ~1,
-                                                  o.frames.video_fps);
+  PictureWorker pictures(o, gas);
   std::deque<std::pair<double, double>> dp;  // (t, dp) of the last kDpWindow seconds
   // dp samples every output interval of simulated time, at the steps the engine thread takes
   // them (ViewEngine::sample_after_step): the live curve is the window's.
   const double sample_interval =
       scene.diagnostics.output_interval > 0.0 ? scene.diagnostics.output_interval : 1e-3;
   double next_sample = sim0.time() + sample_interval;
-  Snapshot snap;
-  const auto picture = [&] {
-    take_snapshot(model.sim(), snap);
+  const auto picture = [&](int frame, const std::string& file) {
+    PictureJob job;
+    job.snapshot = std::make_shared<Snapshot>();
+    take_snapshot(model.sim(), *job.snapshot);
     if (const auto v = regime.view(); v && gas) {
       look.bed_label = regime_words(*v);
-      if (look.bubble_outlines) snap.bubble_edges = v->edges;
+      if (look.bubble_outlines) job.snapshot->bubble_edges = v->edges;
     }
-    return painter.paint(snap, look, curve.state(), dp);
+    job.look = look;
+    job.curve = curve.state();
+    job.dp = dp;
+    job.frame = frame;
+    job.file = file;
+    pictures.push(std::move(job));
   };
   // Frame k at the step nearest k intervals of simulated time stepped (a reset goes back in
   // time, the video goes on).
@@ -264,28 +386,15 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
   int frames = 0;
   const auto frame_if_due = [&] {
     if (stepped != steps_for(static_cast<double>(frames) * o.frames.interval, dt)) return;
-    const render::Image img = picture();
-    if (o.frames.frames) {
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%06d.png", frames);
-      render::write_png((fs::path(o.out) / "frames" / name).string(), img);
-    }
-    if (video) video->write(img);
-    ++frames;
+    picture(frames++, "");
   };
 
   ScriptRunner runner(script.lines);
   HeadlessTarget target(model, curve, regime, look, o);
-  target.screenshot_taker = [&](const std::string& file) {
-    const auto parent = fs::path(file).parent_path();
-    std::error_code e;
-    if (!parent.empty()) fs::create_directories(parent, e);
-    render::write_png(file, picture());
-    std::printf("wrote %s\n", file.c_str());
-  };
+  target.screenshot_taker = [&](const std::string& file) { picture(-1, file); };
+  runner.advance(target);  // the lines before the first `at` act on the first frame
   frame_if_due();
-  for (;;) {
-    runner.advance(target);
+  for (;; runner.advance(target)) {
     if (target.stopped() || model.sim().steps() >= last) break;
     Simulation& sim = model.sim();
     sim.step();  // a SimulationFailure ends the run: exit status 3, nothing more written
@@ -301,10 +410,11 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
     }
     frame_if_due();
   }
-  if (video) video->close();
+  pictures.finish();
   std::printf("wrote %d frames%s%s to %s (t = 0 to %.4g s)\n", frames,
-              o.frames.frames ? " (frames/)" : "", video ? " and video.mp4" : "", o.out.c_str(),
-              model.sim().time());
+              o.frames.frames ? " (frames/)" : "", o.frames.video ? " and video.mp4" : "",
+              o.out.c_str(), model.sim().time());
+  if (gas) std::printf("%s\n", describe_curve(curve.state()).c_str());
   return 0;
 }
 

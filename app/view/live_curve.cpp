@@ -33,7 +33,7 @@ void LiveCurve::clear(double t, double u) {
   last_t_ = t;
   st_.branches.assign(1, CurveBranch{});  // the packed bed: the increasing branch
   st_.held_u = u;
-  st_.umf = UmfFit{};
+  refit();
   ++st_.version;
   restart_hold(t);
 }
@@ -182,6 +182,22 @@ void write_curve_csv(std::ostream& out, const CurveState& c) {
                     p.dp_std, p.samples, p.t_from, p.t_to, p.settle);
       out << line;
     }
+}
+
+std::string describe_curve(const CurveState& c) {
+  int up = 0, down = 0;
+  for (const CurveBranch& b : c.branches)
+    for (const CurvePoint& p : b.points)
+      if (!p.shared) ++(b.increasing ? up : down);
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "live curve: %d points (%d increasing, %d decreasing); ",
+                up + down, up, down);
+  std::string s = buf;
+  if (c.umf.ok) {
+    std::snprintf(buf, sizeof buf, "U_mf from the decreasing branch %.3f m/s", c.umf.umf);
+    return s + buf;
+  }
+  return s + "no U_mf yet (" + c.umf.why + ")";
 }
 
 std::string describe_phase(const CurveState& c) {

@@ -6,10 +6,10 @@
 // change, measured from the last point taken (a slider dragged past its mark and back is one
 // change): increasing (the bed starts packed, so until a point is taken the branch is the
 // increasing one) or decreasing; a change against the branch's direction starts a new branch
-// from the last point (the turning point belongs to both, as the sweep's top run does). U_mf is fitted to the
-// last decreasing branch with the sweep's fit (analysis/umf_fit.hpp) and shown once that fit
-// finds it inside the branch's range. No threads, no GL: the engine thread and the headless
-// viewer each own one and feed it the simulated time, the held velocity and dp.
+// from the last point (the turning point belongs to both, as the sweep's top run does). U_mf is
+// fitted to the last decreasing branch with the sweep's fit (analysis/umf_fit.hpp) and shown once
+// that fit finds it inside the branch's range. No threads, no GL: the engine thread and the
+// headless viewer each own one and feed it the simulated time, the held velocity and dp.
 #include <cstdint>
 #include <ostream>
 #include <string>
@@ -83,7 +83,7 @@ class LiveCurve {
   double avg_from_ = 0.0;  // s, the current hold's averaging window [avg_from_, avg_from_ + window]
   double sum_ = 0.0, sum_sq_ = 0.0;
   int n_ = 0;
-  bool taken_ = false;   // the current hold gave its point
+  bool taken_ = false;    // the current hold gave its point
   double last_t_ = 0.0;   // s, the last sample's time
   double spacing_ = 0.0;  // s between the last two samples
 };
@@ -91,6 +91,9 @@ class LiveCurve {
 // The points as CSV: one row per point taken (a turning point once, on the branch it was taken
 // on): branch,direction,u_m_s,dp_mean_pa,dp_std_pa,samples,t_from_s,t_to_s,settle_s.
 void write_curve_csv(std::ostream& out, const CurveState& c);
+// The curve in one line: "live curve: 12 points (6 increasing, 6 decreasing); U_mf from the
+// decreasing branch 2.05 m/s" (or why there is none).
+std::string describe_curve(const CurveState& c);
 // Where the hold is, in words: "settling at 2.20 m/s: 0.32 s left", "averaging ...", "point
 // taken at 2.20 m/s".
 std::string describe_phase(const CurveState& c);
