@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <stdexcept>
 #include <thread>
 
@@ -442,23 +443,8 @@ void Viewer::capture_if_requested() {
   }
   const render::Image img = read_window(*context_);
   if (!screenshot_requests_.empty() && settle_frames_ <= 0) {
-    for (const std::string& path : screenshot_requests_) {
-      try {
-        const auto parent = std::filesystem::path(path).parent_path();
-        std::error_code ec;
-        if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-        render::write_png(path, img);
-        message_ = "wrote " + path;
-        std::printf("wrote %s\n", path.c_str());
-      } catch (const std::exception& e) {
-        message_ = e.what();
-        if (!opt_.script.empty()) {
-          std::fprintf(stderr, "fluidbed: output failed: %s\n", e.what());
-          exit_status_ = 4;
-          quit_ = true;
-        }
-      }
-    }
+    for (const std::string& path : screenshot_requests_)
+      write_output(path, [&] { render::write_png(path, img); });
     screenshot_requests_.clear();
   }
   if (!recording) return;
@@ -599,15 +585,22 @@ bool Viewer::save_curve(const std::string& file) {
 }
 
 void Viewer::save_curve_file(const std::string& path) {
+  write_output(path, [&] {
+    if (std::filesystem::path(path).extension() == ".png")
+      curve_image(status_.curve, opt_.font).write_png(path);
+    else
+      write_file_atomically(path, [&](std::ofstream& out) { write_curve_csv(out, status_.curve); });
+  });
+}
+
+// A file the viewer writes (its folder made first), said in the panel and on the terminal; a
+// script stops at a failure to write (exit status 4).
+void Viewer::write_output(const std::string& path, const std::function<void()>& write) {
   try {
     const auto parent = std::filesystem::path(path).parent_path();
     std::error_code ec;
     if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-    if (std::filesystem::path(path).extension() == ".png") {
-      curve_image(status_.curve, opt_.font).write_png(path);
-    } else {
-      write_file_atomically(path, [&](std::ofstream& out) { write_curve_csv(out, status_.curve); });
-    }
+    write();
     message_ = "wrote " + path;
     std::printf("wrote %s\n", path.c_str());
   } catch (const std::exception& e) {

@@ -8,6 +8,7 @@
 // bubble under the pointer.
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -102,6 +103,7 @@ class Viewer : private ScriptTarget {
   void start_recording(const std::string& target);
   void stop_recording();
   void save_curve_file(const std::string& path);
+  void write_output(const std::string& path, const std::function<void()>& write);
   void post(const ViewCommand& c);
   void toggle_run();
   void cycle_colour();

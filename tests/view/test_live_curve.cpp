@@ -14,6 +14,7 @@
 #include "view/script.hpp"
 #include "view/script_runner.hpp"
 #include "view/status_words.hpp"
+#include "view_scene.hpp"
 
 namespace fluidbed {
 namespace {
@@ -236,12 +237,7 @@ curve out/fig6.csv
   EXPECT_EQ(s.lines[8].text, "out/fig6.csv");
   EXPECT_TRUE(s.needs_umf());
   const auto message = [](const std::string& text) {
-    try {
-      app::parse_view_script(text, "s.txt");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return testing::script_error(app::parse_view_script, text);
   };
   EXPECT_NE(message("preset boiling").find("unknown preset 'boiling'"), std::string::npos);
   EXPECT_NE(message("caption \"open").find("not closed"), std::string::npos);

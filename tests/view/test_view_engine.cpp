@@ -517,12 +517,7 @@ at 0.1 quit
 
 TEST(ViewScript, NamesTheLineAndTheProblem) {
   const auto message = [](const std::string& text) {
-    try {
-      app::parse_view_script(text, "s.txt");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return testing::script_error(app::parse_view_script, text);
   };
   EXPECT_NE(message("run\njump 3\n").find("s.txt line 2: unknown command 'jump'"),
             std::string::npos)

@@ -1,8 +1,10 @@
 #pragma once
 // A small coupled bed for the viewer's tests: about a hundred particles on the lattice start with
-// a jet, so that the engine thread steps in microseconds (also under the thread sanitizer).
+// a jet, so that the engine thread steps in microseconds (also under the thread sanitizer); and
+// the error a view script's text gives.
 #include <string>
 
+#include "core/errors.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace fluidbed::testing {
@@ -56,5 +58,16 @@ particle_steps_per_gas_step = 2
 [time]
 end = 1.0
 )";
+
+// The one-line error parsing TEXT as a view script gives ("no error" when it parses).
+template <class Parse>
+std::string script_error(Parse parse, const std::string& text) {
+  try {
+    parse(text, "s.txt");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
 
 }  // namespace fluidbed::testing
