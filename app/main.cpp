@@ -35,8 +35,7 @@ void add_output_options(CLI::App* cmd, fluidbed::app::OutputArgs& o) {
   cmd->add_option("--montage", o.montage, "write DIR/montage.png of these times: t1,t2,... (s)");
   cmd->add_option("--frame-interval", o.frame_interval, "simulated seconds between frames (0.04)");
   cmd->add_option("--frame-size", o.frame_size, "frame size WxH in pixels (1280x720)");
-  cmd->add_option("--colour", o.colour,
-                  "particle colour: speed, force, torque, overlap, height, fixed");
+  cmd->add_option("--colour", o.colour, "particle colour: speed, force, torque, overlap, height, fixed");
   cmd->add_option("--colour-range", o.colour_range, "colour range MIN,MAX (the quantity's unit)");
   cmd->add_flag("--gas-arrows,!--no-gas-arrows", o.gas_arrows, "gas velocity arrows (on)");
   cmd->add_flag("--gas-arrow-colour", o.gas_arrow_colour, "colour gas arrows by speed");
@@ -107,9 +106,8 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "measure speed (default scene: packing)");
   add_scene_options(bench, bench_args, false);
   bench->add_option("--out", bench_args.out, "folder for bench.json (default out/bench)");
-  bench
-      ->add_option("--repeat", bench_args.repeat,
-                   "the same run N times: median, min and max in bench.json (default 1)")
+  bench->add_option("--repeat", bench_args.repeat,
+                    "the same run N times: median, min and max in bench.json (default 1)")
       ->check(CLI::PositiveNumber);
   std::string bench_peer;  // bench --peer liggghts (app/cli/bench_peer.hpp)
   bench->add_option("--peer", bench_peer, "also run the same work in another code: liggghts");
@@ -120,48 +118,40 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
   sweep->add_option("--velocities", sweep_args.velocities,
-                    "superficial velocities in m/s: 0.5,1.0,... (default: the paper's 23 from 0.5 "
-                    "to 3.2, scaled by the scene's Wen-Yu U_mf over the paper's)");
+                    "superficial velocities in m/s: 0.5,1.0,... (default: the paper's 23 from 0.5 to 3.2, scaled by the scene's Wen-Yu U_mf over the paper's)");
   sweep->add_option("--run-time", sweep_args.run_time, "simulated seconds per velocity (1.5)");
   sweep->add_option("--averaging-start", sweep_args.averaging_start,
                     "seconds into each run where the mean (eq 30) starts (0.5)");
-  sweep->add_option("--threads", sweep_args.threads, "runs side by side (2)")
-      ->check(CLI::PositiveNumber);
+  sweep->add_option("--threads", sweep_args.threads, "runs side by side (2)")->check(CLI::PositiveNumber);
   sweep->add_option("--out", sweep_args.out, "output folder (default out/sweep)");
 
   auto* reproduce = app.add_subcommand("reproduce", "every figure of the paper, with a report");
   reproduce->add_option("--out", reproduce_args.out, "output folder (default out/reproduce)");
   reproduce->add_flag("--quick", reproduce_args.quick, "shorter runs: every figure in minutes");
   reproduce->add_option("--threads", reproduce_args.threads, "threads inside a step");
-  reproduce
-      ->add_option("--set", reproduce_args.overrides,
-                   "override a value in every scene: section.key=value")
+  reproduce->add_option("--set", reproduce_args.overrides,
+                        "override a value in every scene: section.key=value")
       ->take_all()
       ->allow_extra_args(false);
 
   // The viewer: a window with a control panel (README.md, "Viewer"); headless frames without one.
-  auto* view = app.add_subcommand(
-      "view", "watch a scene live with a control panel (default scene: teaching)");
+  auto* view = app.add_subcommand("view", "watch a scene live with a control panel (default scene: teaching)");
   add_scene_options(view, view_args.run_like, false);
   add_output_options(view, view_args.output);
   // The window opens at ViewArgs::kWindowSize unless --frame-size says otherwise.
   view->get_option("--frame-size")
       ->description(std::string("window size WxH in pixels (") +
                     fluidbed::app::ViewArgs::kWindowSize + "; headless: the frames' size)");
-  view->add_option("--script", view_args.script,
-                   "drive the viewer from a file (README.md, \"Viewer\")");
-  view->add_option(
-      "--lesson", view_args.lesson,
-      "run a lesson of assets/lessons (a script with captions); headless: DIR/video.mp4");
+  view->add_option("--script", view_args.script, "drive the viewer from a file (README.md, \"Viewer\")");
+  view->add_option("--lesson", view_args.lesson,
+                   "run a lesson of assets/lessons (a script with captions); headless: DIR/video.mp4");
   view->add_flag("--list-lessons", view_args.list_lessons, "list the lessons and exit");
   view->add_option("--max-fps", view_args.max_fps,
                    "the window draws at most this many frames per second (30; 0: no cap)")
       ->check(CLI::NonNegativeNumber);
-  view->add_option("--out", view_args.out,
-                   "folder for screenshots, recordings, headless frames (out/view)");
+  view->add_option("--out", view_args.out, "folder for screenshots, recordings, headless frames (out/view)");
 
-  auto* exporter =
-      app.add_subcommand("export", "write the scene for another code (LIGGGHTS, OpenFOAM)");
+  auto* exporter = app.add_subcommand("export", "write the scene for another code (LIGGGHTS, OpenFOAM)");
   exporter->add_option("scene", export_args.scene, "scene file (TOML)")->required();
   exporter->add_option("--set", export_args.overrides, "override a scene value: section.key=value")
       ->take_all()

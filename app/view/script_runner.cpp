@@ -34,72 +34,30 @@ void ScriptRunner::apply(const ScriptLine& l, ScriptTarget& t) {
       if (const Preset* p = find_preset(l.text); p && t.umf() > 0.0)
         done = t.velocity(p->umf_multiple * t.umf());
       break;
-    case K::stiffness:
-      done = t.stiffness(l.number);
-      break;
-    case K::settle:
-      done = t.settle(l.number);
-      break;
-    case K::average:
-      done = t.average(l.number);
-      break;
-    case K::curve:
-      done = t.save_curve(l.text);
-      break;
-    case K::caption:
-      done = t.caption(l.text);
-      break;
-    case K::ideal:
-      done = t.ideal(on);
-      break;
-    case K::run:
-      done = t.run_switch(true);
-      break;
-    case K::pause:
-      done = t.run_switch(false);
-      break;
-    case K::step:
-      done = t.step(l.number);
-      break;
-    case K::reset:
-      done = t.reset();
-      break;
-    case K::wait:
-      done = t.wait(l.number);
-      break;
-    case K::colour:
-      done = t.colour(l.text);
-      break;
-    case K::gas_arrows:
-      done = t.gas_arrows(on);
-      break;
-    case K::particle_arrows:
-      done = t.particle_arrows(on);
-      break;
-    case K::porosity:
-      done = t.porosity(on);
-      break;
-    case K::bubbles:
-      done = t.bubbles(on);
-      break;
-    case K::track:
-      done = t.track(static_cast<long>(l.number), l.line);
-      break;
-    case K::zoom:
-      done = t.zoom(l.number);
-      break;
-    case K::screenshot:
-      done = t.screenshot(l.text);
-      break;
-    case K::record:
-      done = t.record(l.text);
-      break;
-    case K::record_stop:
-      done = t.record_stop();
-      break;
-    case K::quit:
-      done = t.quit();
-      break;
+    // clang-format off
+    case K::stiffness: done = t.stiffness(l.number); break;
+    case K::settle: done = t.settle(l.number); break;
+    case K::average: done = t.average(l.number); break;
+    case K::curve: done = t.save_curve(l.text); break;
+    case K::caption: done = t.caption(l.text); break;
+    case K::ideal: done = t.ideal(on); break;
+    case K::run: done = t.run_switch(true); break;
+    case K::pause: done = t.run_switch(false); break;
+    case K::step: done = t.step(l.number); break;
+    case K::reset: done = t.reset(); break;
+    case K::wait: done = t.wait(l.number); break;
+    case K::colour: done = t.colour(l.text); break;
+    case K::gas_arrows: done = t.gas_arrows(on); break;
+    case K::particle_arrows: done = t.particle_arrows(on); break;
+    case K::porosity: done = t.porosity(on); break;
+    case K::bubbles: done = t.bubbles(on); break;
+    case K::track: done = t.track(static_cast<long>(l.number), l.line); break;
+    case K::zoom: done = t.zoom(l.number); break;
+    case K::screenshot: done = t.screenshot(l.text); break;
+    case K::record: done = t.record(l.text); break;
+    case K::record_stop: done = t.record_stop(); break;
+    case K::quit: done = t.quit(); break;
+      // clang-format on
   }
   if (!done) t.unsupported(l);
 }
