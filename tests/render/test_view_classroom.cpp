@@ -246,6 +246,28 @@ TEST(ViewWindow, FailureMessageWrapsAndResetActsAsDuringARun) {
 namespace fluidbed::testing {
 namespace {
 
+// The fault: at a high velocity the overlap reached 6.2 % with no warning. Soft contacts (30 N/m:
+// the bed's weight presses the bottom layers about 7 % into each other) must bring the warning.
+TEST(ViewWindow, DeepOverlapsAreWarnedOf) {
+  REQUIRE_WINDOW();
+  const auto dir = fresh_dir("overlap");
+  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string script =
+      write_file(dir / "s.txt", "at 0.3 screenshot " + (dir / "a.png").string() + "\nquit\n");
+  BackgroundView v(dir, scene + " --set contact.stiffness=30 --script " + script +
+                            " --frame-size 1024x600 --out " + (dir / "out").string());
+  ASSERT_EQ(v.wait(), 0) << v.log();
+  const auto w = v.widgets();
+  ASSERT_TRUE(w.count("overlap_warning")) << v.log();
+  EXPECT_GT(number(w.at("overlap_warning"), 4), 0.05);
+  // At 1024 x 600 the panel's buttons are all on the screen, and the bed is wide enough to see.
+  for (const char* name : {"run_button", "reset_button", "screenshot_button", "record_button"}) {
+    ASSERT_TRUE(w.count(name)) << name;
+    EXPECT_LE(number(w.at(name), 3), 600.0) << name;
+  }
+  EXPECT_GE(number(w.at("bed0"), 2) - number(w.at("bed0"), 0), 60.0);
+}
+
 // Reads a CSV's rows (header left out).
 std::vector<std::string> csv_rows(const fs::path& file) {
   std::ifstream in(file);

@@ -11,6 +11,7 @@
 #include "view/live_curve.hpp"
 #include "view/panel_layout.hpp"
 #include "view/presets.hpp"
+#include "view/regime_watch.hpp"
 #include "view/script.hpp"
 #include "view/script_runner.hpp"
 #include "view/status_words.hpp"
@@ -304,6 +305,48 @@ TEST(StatusWords, RunningWhileAScriptRunsTheBedAndSlowMotionBesideTheFigure) {
   EXPECT_EQ(app::speed_words(1.02), "real time (1.02 sim s per wall s)");
   EXPECT_EQ(app::speed_words(2.0), "fast motion x 2.0 (2 sim s per wall s)");
   EXPECT_EQ(app::speed_words(0.0), "speed: not measured yet");
+}
+
+}  // namespace
+}  // namespace fluidbed
+
+namespace fluidbed {
+namespace {
+
+// The bubble under the pointer: the region whose cells hold the point.
+TEST(BubbleView, FindsTheRegionUnderAPointAndSaysTheRegime) {
+  app::BubbleView v;
+  v.grid.nx = 4;
+  v.grid.ny = 3;
+  v.grid.dx = v.grid.dy = 0.002;
+  v.label = {kCellDense,
+             0,
+             0,
+             kCellDense,  // row 0 (the bottom)
+             kCellDense,
+             0,
+             1,
+             kCellDense,  //
+             kCellFreeboard,
+             kCellFreeboard,
+             kCellFreeboard,
+             kCellFreeboard};
+  v.regions.resize(2);
+  v.regions[0].id = 7;
+  v.regions[1].id = 9;
+  ASSERT_NE(v.region_at(0.003, 0.001), nullptr);
+  EXPECT_EQ(v.region_at(0.003, 0.001)->id, 7);
+  EXPECT_EQ(v.region_at(0.005, 0.003)->id, 9);
+  EXPECT_EQ(v.region_at(0.001, 0.001), nullptr);  // dense
+  EXPECT_EQ(v.region_at(0.005, 0.005), nullptr);  // freeboard
+  EXPECT_EQ(v.region_at(0.009, 0.001), nullptr);  // outside the grid
+  EXPECT_EQ(v.region_at(-0.001, 0.001), nullptr);
+  v.window.regime = Regime::slugging;
+  v.window_s = 1.0;
+  EXPECT_EQ(app::regime_words(v), "slugging");
+  v.window.regime = Regime::fixed;
+  v.window_s = 0.2;
+  EXPECT_EQ(app::regime_words(v), "fixed bed?");
 }
 
 }  // namespace
