@@ -3,7 +3,8 @@
 // newest snapshot the engine published, draws the bed (renderer) and the panel (ImGui), and sends
 // the panel's edits to the engine as commands. It never waits for the engine, nor the engine for it
 // (a script's `at T` is the one exception: the engine stops at T, the window keeps drawing).
-// window.cpp: the frame, input, zoom, pictures and the script; panel.cpp: the panel;
+// window.cpp: the frame, input, zoom and the script; pictures.cpp: screenshots, recordings and
+// saved files; panel.cpp: the panel;
 // panel_plots.cpp: its plots (dp, overlap, the live Fig. 6); overlays.cpp: rings, paths and the
 // bubble under the pointer.
 #include <chrono>
