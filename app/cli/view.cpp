@@ -137,10 +137,17 @@ int view_command(const ViewArgs& a) {
   // The scene's own U_mf (the slider's scale and ticks, the presets): measured once, cached.
   UmfEstimate umf;
   if (s.gas.enabled && (window || script.needs_umf())) {
-    umf = estimate_umf(s, [](const std::string& line) {
-      std::printf("fluidbed view: %s\n", line.c_str());
-      std::fflush(stdout);
-    });
+    try {
+      umf = estimate_umf(s, [](const std::string& line) {
+        std::printf("fluidbed view: %s\n", line.c_str());
+        std::fflush(stdout);
+      });
+    } catch (const std::exception& e) {
+      if (script.needs_umf()) throw;  // the script's presets cannot be carried out
+      std::printf("fluidbed view: no U_mf for this scene (%s): no presets\n", e.what());
+    }
+  }
+  if (umf.umf > 0.0) {
     std::printf(
         "fluidbed view: U_mf = %.3f m/s (%s; %s)\n", umf.umf, UmfEstimate::kMethod,
         umf.from_cache ? "cached" : (std::to_string(umf.evaluations) + " fixed-bed runs").c_str());
