@@ -93,6 +93,10 @@ void Viewer::draw_particle_info(std::size_t i, bool tooltip) {
               c.particles.size(), c.walls, i < s.overlap.size() ? s.overlap[i] : c.max_overlap);
 }
 
+bool Viewer::bed_is_running() const {
+  return status_.running || status_.stepping || script_runs_the_bed();
+}
+
 bool Viewer::script_runs_the_bed() const {
   // A script that runs the bed from one `at T` to the next is running it, even at the instant
   // it stopped there for a screenshot.
@@ -102,8 +106,9 @@ bool Viewer::script_runs_the_bed() const {
 void Viewer::draw_top_block() {
   const EngineStatus& st = status_;
   const float button = 4.6f * ImGui::GetFontSize();
-  if (ImGui::Button(st.running ? "Pause" : "Run", ImVec2(button, 0))) toggle_run();
-  note_widget("run_button", st.running ? "Pause" : "Run");
+  const char* run_label = bed_is_running() ? "Pause" : "Run";
+  if (ImGui::Button(run_label, ImVec2(button, 0))) toggle_run();
+  note_widget("run_button", run_label);
   ImGui::SameLine();
   if (ImGui::Button("Step", ImVec2(button, 0))) post({ViewCommand::Kind::step, 1.0});
   note_widget("step_button");

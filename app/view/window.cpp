@@ -13,7 +13,6 @@
 #include <stdexcept>
 #include <thread>
 
-
 namespace fluidbed::app {
 namespace {
 
@@ -332,8 +331,11 @@ void Viewer::handle_scene_input() {
   if (hovered_ || hovered_bubble_) draw_hover_tooltip(hovered_, hovered_bubble_);
 }
 
+// Run or pause as the button says: a bed a script is running pauses, the script with it.
 void Viewer::toggle_run() {
-  post({status_.running ? ViewCommand::Kind::pause : ViewCommand::Kind::run, 0.0});
+  const bool pause = bed_is_running();
+  if (!opt_.script.empty()) script_wants_running_ = !pause;
+  post({pause ? ViewCommand::Kind::pause : ViewCommand::Kind::run, 0.0});
 }
 
 void Viewer::cycle_colour() {

@@ -109,7 +109,8 @@ class Viewer : private ScriptTarget {
   void toggle_run();
   void cycle_colour();
   void set_velocity(double u);
-  bool script_runs_the_bed() const;  // a script is running the bed from one `at T` to the next
+  bool script_runs_the_bed() const;  // from one `at T` to the next
+  bool bed_is_running() const;       // what Run / Pause shows: stepping, or a script running it
   std::string next_name(const std::string& stem, const std::string& ext);
   // Frame pixels (the renderer's frame, in the bed area) <-> window pixels.
   float to_window_x(double fx) const;
