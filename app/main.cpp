@@ -138,7 +138,14 @@ int main(int argc, char** argv) {
   auto* view = app.add_subcommand("view", "watch a scene live with a control panel (default scene: teaching)");
   add_scene_options(view, view_args.run_like, false);
   add_output_options(view, view_args.output);
+  // The window opens at ViewArgs::kWindowSize unless --frame-size says otherwise.
+  view->get_option("--frame-size")
+      ->description(std::string("window size WxH in pixels (") +
+                    fluidbed::app::ViewArgs::kWindowSize + "; headless: the frames' size)");
   view->add_option("--script", view_args.script, "drive the viewer from a file (README.md, \"Viewer\")");
+  view->add_option("--lesson", view_args.lesson,
+                   "run a lesson of assets/lessons (a script with captions); headless: DIR/video.mp4");
+  view->add_flag("--list-lessons", view_args.list_lessons, "list the lessons and exit");
   view->add_option("--max-fps", view_args.max_fps,
                    "the window draws at most this many frames per second (30; 0: no cap)")
       ->check(CLI::NonNegativeNumber);
@@ -210,7 +217,10 @@ int main(int argc, char** argv) {
     if (*reproduce) return fluidbed::app::reproduce_command(reproduce_args);
     if (*exporter) return fluidbed::app::export_command(export_args);
     if (*study) return fluidbed::app::study_command(study_args);
-    if (*view) return fluidbed::app::view_command(view_args);
+    if (*view) {
+      view_args.frame_interval_given = view->count("--frame-interval") > 0;
+      return fluidbed::app::view_command(view_args);
+    }
     if (*check) return fluidbed::app::check_command(check_args);
     if (*keys) return fluidbed::app::keys_command(keys_args, command_docs(app));
   } catch (const fluidbed::InputError& e) {

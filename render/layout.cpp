@@ -26,7 +26,9 @@ FrameLayout vertical_metrics(int width, int height, float below) {
 }
 
 // The information column: about 16 font widths, room for "U = 2.80 m/s (jet 42.0 m/s)".
-float info_width(const FrameLayout& l) { return 16.0f * l.font; }
+float info_width(const FrameLayout& l) {
+  return 16.0f * l.font;
+}
 
 void place_info(FrameLayout& l, float x0) {
   l.info.x0 = x0;
@@ -39,10 +41,21 @@ void place_info(FrameLayout& l, float x0) {
   l.colour_bar.y1 = l.colour_bar.y0 + std::max(4.0f * l.font, 0.4f * bed_h);
 }
 
+// The panel a bed's walls enclose (the jet's arrow below them left out).
+Rect walled(const Rect& in, float wall) {
+  return {in.x0 - wall, in.y0 - wall, in.x1 + wall, in.y1 + wall};
+}
+
 }  // namespace
 
-FrameLayout frame_layout(const Snapshot& s, int width, int height, double close_up) {
+FrameLayout frame_layout(const Snapshot& s, int width, int height, double close_up,
+                         bool caption_band) {
   FrameLayout l = vertical_metrics(width, height, 1.6f);
+  if (caption_band) {
+    // Two lines of the caption's text (big) with a little air.
+    l.caption = {0.0f, 0.0f, static_cast<float>(width), std::round(3.1f * l.big)};
+    l.info.y0 += l.caption.y1;
+  }
   const float top = l.info.y0 + l.wall, bottom = l.info.y1 - l.wall;
   const float gap = 2.0f * l.font;
   const bool zoom = close_up > 0.0 && close_up < 1.0;
@@ -51,7 +64,8 @@ FrameLayout frame_layout(const Snapshot& s, int width, int height, double close_
   double scale = (bottom - top) / std::max(s.height, 1e-9);
   double zoom_scale = zoom ? (bottom - zoom_top) / std::max(close_up * s.height, 1e-9) : 0.0;
   // Shrink both panels alike when the frame is too narrow for them and the labels.
-  const float fixed = 2.0f * l.margin + gap + info_width(l) + (zoom ? 4.0f * l.wall + gap : 2.0f * l.wall);
+  const float fixed =
+      2.0f * l.margin + gap + info_width(l) + (zoom ? 4.0f * l.wall + gap : 2.0f * l.wall);
   const double needed = s.width * (scale + zoom_scale);
   const double avail = static_cast<double>(width) - fixed;
   if (avail > 0.0 && needed > avail) {
@@ -64,14 +78,19 @@ FrameLayout frame_layout(const Snapshot& s, int width, int height, double close_
   float x = std::max(l.margin, std::round((static_cast<float>(width) - content) / 2.0f)) + l.wall;
   BedView bed;
   bed.scale = scale;
-  bed.inside = {x, top, x + bed_w, top + static_cast<float>(s.height * scale)};
+  // Both beds stand on the same floor (a frame too narrow shrinks them).
+  bed.inside = {x, bottom - static_cast<float>(s.height * scale), x + bed_w, bottom};
+  bed.clip = walled(bed.inside, l.wall);
   l.beds.push_back(bed);
   x = bed.inside.x1 + l.wall;
   if (zoom) {
     x += gap + l.wall;
     BedView z;
     z.scale = zoom_scale;
-    z.inside = {x, bottom - static_cast<float>(close_up * s.height * zoom_scale), x + zoom_w, bottom};
+    z.inside = {x, bottom - static_cast<float>(close_up * s.height * zoom_scale), x + zoom_w,
+                bottom};
+    z.clip = walled(z.inside, l.wall);
+    z.clip.y0 = z.inside.y0;  // the close-up is cut at its top, not walled
     l.beds.push_back(z);
     l.close_up_height = close_up * s.height;
     x = z.inside.x1 + l.wall;
@@ -93,6 +112,7 @@ FrameLayout montage_layout(const Snapshot& s, int panels, int height) {
     bed.scale = scale;
     const float left = l.margin + static_cast<float>(i) * panel + (panel - bed_w) / 2.0f;
     bed.inside = {std::round(left), top, std::round(left) + bed_w, top + bed_h};
+    bed.clip = walled(bed.inside, l.wall);
     l.beds.push_back(bed);
   }
   l.label_y = bottom + l.wall + 2.6f * l.font;
@@ -100,6 +120,25 @@ FrameLayout montage_layout(const Snapshot& s, int panels, int height) {
   l.width = static_cast<int>(std::ceil(l.info.x1 + l.margin));
   l.width += l.width % 2;  // even, like the frames a video needs
   return l;
+}
+
+void zoom_bed(FrameLayout& l, const BedZoom& z) {
+  if (z.bed < 0 || z.bed >= static_cast<int>(l.beds.size()) || !(z.factor > 1.0)) return;
+  BedView& b = l.beds[static_cast<std::size_t>(z.bed)];
+  // The metres the panel shows unzoomed, and the panel.
+  const double w = b.inside.width() / b.scale, h = b.inside.height() / b.scale;
+  const Rect panel = b.inside;
+  const double scale = b.scale * z.factor;
+  const double half_w = 0.5 * panel.width() / scale, half_h = 0.5 * panel.height() / scale;
+  const double x = std::clamp(z.x, half_w, std::max(half_w, w - half_w));
+  const double y = std::clamp(z.y, half_h, std::max(half_h, h - half_h));
+  const double cx = 0.5 * (panel.x0 + panel.x1), cy = 0.5 * (panel.y0 + panel.y1);
+  b.scale = scale;
+  b.inside.x0 = static_cast<float>(cx - x * scale);
+  b.inside.x1 = static_cast<float>(cx + (w - x) * scale);
+  b.inside.y1 = static_cast<float>(cy + y * scale);
+  b.inside.y0 = static_cast<float>(cy - (h - y) * scale);
+  b.zoomed = true;
 }
 
 }  // namespace fluidbed::render

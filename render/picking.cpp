@@ -5,55 +5,24 @@
 
 namespace fluidbed::render {
 
-void ViewTransform::clamp(double max_zoom) {
-  zoom = std::clamp(std::isfinite(zoom) ? zoom : 1.0, 1.0, max_zoom);
-  const double half = 0.5 / zoom;
-  centre_x = std::clamp(std::isfinite(centre_x) ? centre_x : 0.5, half, 1.0 - half);
-  centre_y = std::clamp(std::isfinite(centre_y) ? centre_y : 0.5, half, 1.0 - half);
+namespace {
+
+bool within(const Rect& r, double x, double y) {
+  return x >= r.x0 && x <= r.x1 && y >= r.y0 && y <= r.y1;
 }
 
-void ViewTransform::zoom_about(double factor, double u, double v) {
-  // The frame fraction under (u, v) before and after must be the same point.
-  const double fx = centre_x + (u - 0.5) / zoom;
-  const double fy = centre_y + (v - 0.5) / zoom;
-  zoom *= factor;
-  clamp();
-  centre_x = fx - (u - 0.5) / zoom;
-  centre_y = fy - (v - 0.5) / zoom;
-  clamp();
-}
+}  // namespace
 
-void ViewTransform::pan_by(double du, double dv) {
-  centre_x -= du / zoom;
-  centre_y -= dv / zoom;
-  clamp();
-}
-
-Rect visible_rect(const ViewTransform& t, int fw, int fh) {
-  const double w = fw / t.zoom, h = fh / t.zoom;
-  const double x0 = t.centre_x * fw - 0.5 * w, y0 = t.centre_y * fh - 0.5 * h;
-  return {static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(x0 + w),
-          static_cast<float>(y0 + h)};
-}
-
-void window_to_frame(const ViewTransform& t, const Rect& area, int fw, int fh, double wx, double wy,
-                     double& fx, double& fy) {
-  const Rect v = visible_rect(t, fw, fh);
-  fx = v.x0 + (wx - area.x0) * v.width() / area.width();
-  fy = v.y0 + (wy - area.y0) * v.height() / area.height();
-}
-
-void frame_to_window(const ViewTransform& t, const Rect& area, int fw, int fh, double fx, double fy,
-                     double& wx, double& wy) {
-  const Rect v = visible_rect(t, fw, fh);
-  wx = area.x0 + (fx - v.x0) * area.width() / v.width();
-  wy = area.y0 + (fy - v.y0) * area.height() / v.height();
+int bed_at(const FrameLayout& l, double fx, double fy) {
+  for (std::size_t k = 0; k < l.beds.size(); ++k)
+    if (within(l.beds[k].clip, fx, fy)) return static_cast<int>(k);
+  return -1;
 }
 
 bool frame_to_world(const FrameLayout& l, double fx, double fy, double& x, double& y) {
   for (std::size_t k = 0; k < l.beds.size(); ++k) {
     const BedView& b = l.beds[k];
-    if (fx < b.inside.x0 || fx > b.inside.x1 || fy < b.inside.y0 || fy > b.inside.y1) continue;
+    if (!within(b.inside, fx, fy) || !within(b.clip, fx, fy)) continue;
     x = (fx - b.inside.x0) / b.scale;
     y = (b.inside.y1 - fy) / b.scale;
     return true;
@@ -85,9 +54,10 @@ std::optional<std::size_t> pick_particle(const Snapshot& s, const FrameLayout& l
       }
     }
     const double margin = best ? s.radius[*best] * b.scale : 0.0;
-    if (best && fx >= b.inside.x0 - margin && fx <= b.inside.x1 + margin &&
-        fy >= b.inside.y0 - margin && fy <= b.inside.y1 + margin)
-      return best;
+    const Rect reach{
+        b.inside.x0 - static_cast<float>(margin), b.inside.y0 - static_cast<float>(margin),
+        b.inside.x1 + static_cast<float>(margin), b.inside.y1 + static_cast<float>(margin)};
+    if (best && within(reach, fx, fy) && (!b.zoomed || within(b.clip, fx, fy))) return best;
   }
   return std::nullopt;
 }

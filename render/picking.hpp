@@ -1,7 +1,7 @@
 #pragma once
-// The viewer's geometry, without GL: where the drawn frame lands in the window (zoom and pan),
-// which particle is under the mouse, and what touches it. Pure arithmetic on a snapshot and the
-// frame's layout, so tests can check it pixel by pixel.
+// The viewer's geometry, without GL: which bed panel and which particle are under the mouse
+// (zoomed panels included: render/layout.hpp, zoom_bed), and what touches a particle. Pure
+// arithmetic on a snapshot and the frame's layout, so tests can check it pixel by pixel.
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -11,29 +11,9 @@
 
 namespace fluidbed::render {
 
-// Zoom and pan of a frame shown in a window area: the visible part of the frame is a rectangle
-// 1 / zoom of its size centred at (centre_x, centre_y), fractions of the frame (y down).
-struct ViewTransform {
-  double zoom = 1.0;                      // >= 1
-  double centre_x = 0.5, centre_y = 0.5;  // fraction of the frame's width and height
-
-  // Keeps zoom in [1, max_zoom] and the visible rectangle inside the frame.
-  void clamp(double max_zoom = 16.0);
-  // Zooms by `factor` keeping the frame point under window fraction (u, v) of the area in place.
-  void zoom_about(double factor, double u, double v);
-  // Moves the view by a drag of (du, dv) fractions of the area (the picture follows the mouse).
-  void pan_by(double du, double dv);
-};
-
-// The visible rectangle of a frame of fw x fh pixels (frame pixels, y down).
-Rect visible_rect(const ViewTransform& t, int fw, int fh);
-// A window point -> frame pixels, for a frame of fw x fh shown in `area` (window pixels, y down).
-void window_to_frame(const ViewTransform& t, const Rect& area, int fw, int fh, double wx, double wy,
-                     double& fx, double& fy);
-void frame_to_window(const ViewTransform& t, const Rect& area, int fw, int fh, double fx, double fy,
-                     double& wx, double& wy);
-
-// A frame point (pixels) in a bed panel -> metres; false outside the panel's bed (or, in the
+// The bed panel under a frame point (pixels): its index in l.beds, or -1.
+int bed_at(const FrameLayout& l, double fx, double fy);
+// A frame point (pixels) in a bed panel -> metres; false outside the panels' beds (or, in the
 // close-up, above its height).
 bool frame_to_world(const FrameLayout& l, double fx, double fy, double& x, double& y);
 // The bed panel's pixel for a point in metres (the main panel, beds[0]).

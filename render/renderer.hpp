@@ -19,6 +19,10 @@
 
 namespace fluidbed::render {
 
+// The layout draw_frame uses for these settings: frame_layout with the close-up and the caption
+// band, the zoom applied (the viewer picks particles with the same one).
+FrameLayout frame_layout_for(const Snapshot& s, const RenderSettings& rs, int width, int height);
+
 class Renderer {
  public:
   // `font_path`: a TrueType font (assets/fonts/DejaVuSans.ttf); InputError if unreadable.

@@ -19,6 +19,7 @@ PACKAGES=(
   python3-glad          # generates the GL loader at build time
   ffmpeg                # DIR/video.mp4; ffprobe in the render tests
   xvfb xauth            # a virtual display: the window backend's test (xvfb-run)
+  xdotool               # drives the viewer's window with a pointer and keys in its tests
   python3-vtk9          # reads the VTK files back in the render tests (ParaView's readers)
   liggghts              # the peer DEM code: `fluidbed export --to liggghts` decks are run in tests
   openfoam              # DPMFoam: `fluidbed export --to openfoam` cases are run in tests (installs in ~10 s)

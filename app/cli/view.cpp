@@ -1,22 +1,23 @@
 #include "cli/view.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 
+#include "cli/view_headless.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "output/frames.hpp"
-#include "render/gl_context.hpp"
-#include "render/renderer.hpp"
+#include "run/umf_estimate.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"
 #include "view/engine.hpp"
 #include "view/script.hpp"
-#include "view/script_runner.hpp"
 #include "view/window.hpp"
 
 namespace fluidbed::app {
@@ -34,117 +35,143 @@ OutputArgs with_run_names(OutputArgs o) {
   return o;
 }
 
-// Without a window (ScriptTarget, view/script_runner.hpp): the gas velocity, the ideal case,
-// screenshots and quit act at their simulated times; every other command has no effect.
-class HeadlessScript : public ScriptTarget {
- public:
-  HeadlessScript(ViewModel& model, const FrameOptions& fo) : model_(model), fo_(fo) {}
+std::string lessons_dir() {
+  return asset_dir() + "/lessons";
+}
 
-  void run_to(double t) override {
-    target_step_ = steps_for(t, model_.sim().settings().time.dt);
-  }
-  bool busy() override { return model_.sim().steps() < target_step_; }
-  bool stopped() const override { return quit_; }
-  void unsupported(const ScriptLine& l) override {
-    std::fprintf(stderr, "fluidbed view: headless: script line %d has no effect without a window\n",
-                 l.line);
-  }
-  bool velocity(double u) override {
-    model_.set_velocity(u);
-    return true;
-  }
-  bool ideal(bool on) override {
-    model_.set_ideal(on);
-    return true;
-  }
-  bool screenshot(const std::string& file) override {
-    if (!renderer_) {
-      context_ = render::make_context("osmesa", fo_.width, fo_.height);
-      renderer_ = std::make_unique<render::Renderer>(*context_, fo_.font);
-    }
-    Snapshot snap;
-    take_snapshot(model_.sim(), snap);
-    render::write_png(file, renderer_->render_frame(snap, fo_.look, fo_.width, fo_.height));
-    std::printf("wrote %s\n", file.c_str());
-    return true;
-  }
-  bool quit() override {
-    quit_ = true;
-    return true;
-  }
+// The lesson's file; InputError naming the lessons there are for a name that is not one.
+std::string lesson_file(const std::string& name) {
+  namespace fs = std::filesystem;
+  const fs::path file = fs::path(lessons_dir()) / (name + ".txt");
+  if (name.find('/') == std::string::npos && fs::exists(file)) return file.string();
+  std::string known;
+  for (const auto& [n, title] : list_lessons()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError("no lesson '" + name + "' (known: " + (known.empty() ? "none" : known) +
+                   "; `fluidbed view --list-lessons`)");
+}
 
- private:
-  ViewModel& model_;
-  const FrameOptions& fo_;
-  std::int64_t target_step_ = 0;  // of the last `at T`
-  bool quit_ = false;
-  std::unique_ptr<render::GlContext> context_;
-  std::unique_ptr<render::Renderer> renderer_;
-};
+// A lesson's `scene NAME`: a path as given, else relative to the lesson, else a shipped scene.
+std::string resolve_scene(const std::string& name, const std::string& script_path) {
+  namespace fs = std::filesystem;
+  for (const fs::path& p : {fs::path(name), fs::path(script_path).parent_path() / name,
+                            fs::path(asset_dir()) / "scenes" / name})
+    if (fs::exists(p)) return p.string();
+  throw InputError("the scene " + name + " named in " + script_path + " was not found");
+}
 
-// Without a window: the scene run headlessly with frames every --frame-interval (as `run
-// --frames`), the script's gas velocity, ideal case and screenshots applied at their simulated
-// times.
-int view_headless(const Settings& s, const ViewArgs& a, const std::vector<ScriptLine>& script,
-                  FrameOptions fo, const std::string& out) {
-  ViewModel model(s);
-  const double dt = s.time.dt;
-  // The end: the script's quit (at the last time it named), else --until, else the scene's end.
-  double until = a.run_like.until >= 0.0 ? a.run_like.until : s.time.end;
-  {
-    double t = 0.0;
-    for (const ScriptLine& l : script) {
-      if (l.at >= 0.0) t = std::max(t, l.at);
-      if (l.kind == ScriptLine::Kind::quit) {
-        until = t;
-        break;
+// Stiffness lines are checked against the scene before anything runs (a step too long for a
+// stiffer contact is bad input, status 2, not a failure half-way through a lesson).
+void check_script_against(const ViewScript& script, const Settings& s, const std::string& origin) {
+  for (const ScriptLine& l : script.lines) {
+    if (l.kind == ScriptLine::Kind::stiffness && l.number > 0.0) {
+      try {
+        (void)with_contact(s, false, l.number);
+      } catch (const InputError& e) {
+        throw InputError(origin + " line " + std::to_string(l.line) + ": " + e.what());
       }
     }
+    const bool needs_gas = l.kind == ScriptLine::Kind::preset ||
+                           (l.kind == ScriptLine::Kind::velocity && l.text == "umf");
+    if (needs_gas && !s.gas.enabled)
+      throw InputError(origin + " line " + std::to_string(l.line) +
+                       ": presets and velocities in U_mf need a scene with gas");
   }
-  const std::int64_t last = steps_for(until, dt);
-  fo.frames = true;
-  FrameOutput pictures(out, fo, model.sim(), until);
-  pictures.observe(model.sim());
-  ScriptRunner runner(script);
-  HeadlessScript target(model, fo);
-  for (;;) {
-    runner.advance(target);
-    if (target.stopped() || model.sim().steps() >= last) break;
-    model.sim().step();
-    pictures.observe(model.sim());
-  }
-  const FrameStats st = pictures.finish();
-  std::printf("wrote %d frames to %s/frames (t = 0 to %.4g s)\n", st.frames, out.c_str(),
-              model.sim().time());
-  return 0;
 }
 
 }  // namespace
 
+std::vector<std::pair<std::string, std::string>> list_lessons() {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::string, std::string>> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(lessons_dir(), ec)) {
+    if (e.path().extension() != ".txt") continue;
+    std::ifstream in(e.path());
+    std::string line, title;
+    while (std::getline(in, line))
+      if (line.rfind("# ", 0) == 0) {
+        title = line.substr(2);
+        break;
+      }
+    out.emplace_back(e.path().stem().string(), title);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 int view_command(const ViewArgs& a) {
-  const std::string scene =
-      a.run_like.scene.empty() ? asset_dir() + "/scenes/teaching.toml" : a.run_like.scene;
+  if (a.list_lessons) {
+    const auto lessons = list_lessons();
+    if (lessons.empty()) throw InputError("no lessons in " + lessons_dir());
+    for (const auto& [name, title] : lessons)
+      std::printf("%-20s %s\n", name.c_str(), title.c_str());
+    return 0;
+  }
+  if (!a.script.empty() && !a.lesson.empty())
+    throw InputError("view takes --script FILE or --lesson NAME, not both");
+  const std::string script_path = a.lesson.empty() ? a.script : lesson_file(a.lesson);
+  ViewScript script = script_path.empty() ? ViewScript{} : load_view_script(script_path);
+  const std::string out = a.out.empty() ? "out/view" : a.out;
+  if (!a.lesson.empty()) {
+    // A lesson's files (screenshots, saved curves, recordings) go into the output folder.
+    for (ScriptLine& l : script.lines) {
+      const bool file = l.kind == ScriptLine::Kind::screenshot ||
+                        l.kind == ScriptLine::Kind::record || l.kind == ScriptLine::Kind::curve;
+      if (file && std::filesystem::path(l.text).is_relative())
+        l.text = (std::filesystem::path(out) / l.text).string();
+    }
+  }
+  std::string scene = a.run_like.scene;
+  if (scene.empty() && !script.scene.empty()) scene = resolve_scene(script.scene, script_path);
+  if (scene.empty()) scene = asset_dir() + "/scenes/teaching.toml";
   if (!std::filesystem::exists(scene)) throw InputError("cannot read the scene " + scene);
   Settings s = load_scene(scene, a.run_like.overrides);
   refuse_unsafe_scene(s);
   s.threads = a.run_like.threads;
-  const std::vector<ScriptLine> script =
-      a.script.empty() ? std::vector<ScriptLine>{} : load_view_script(a.script);
-  const std::string out = a.out.empty() ? "out/view" : a.out;
+  check_script_against(script, s, script_path);
   FrameOptions fo = frame_options(with_run_names(a.output), asset_dir());
+  // A lesson's video in slow motion (x 2 at 25 frames per second), time to read its captions.
+  if (!a.lesson.empty() && !a.frame_interval_given) fo.interval = 0.02;
+  const bool window = has_display();
 
-  bool window = has_display();
+  // The scene's own U_mf (the slider's scale and ticks, the presets): measured once, cached.
+  UmfEstimate umf;
+  if (s.gas.enabled && (window || script.needs_umf())) {
+    try {
+      umf = estimate_umf(s, [](const std::string& line) {
+        std::printf("fluidbed view: %s\n", line.c_str());
+        std::fflush(stdout);
+      });
+    } catch (const std::exception& e) {
+      if (script.needs_umf()) throw;  // the script's presets cannot be carried out
+      std::printf("fluidbed view: no U_mf for this scene (%s): no presets\n", e.what());
+    }
+  }
+  if (umf.umf > 0.0) {
+    std::printf(
+        "fluidbed view: U_mf = %.3f m/s (%s; %s)\n", umf.umf, UmfEstimate::kMethod,
+        umf.from_cache ? "cached" : (std::to_string(umf.evaluations) + " fixed-bed runs").c_str());
+  }
+
+  HeadlessView hv;
+  hv.frames = fo;
+  hv.out = out;
+  hv.until = a.run_like.until;
+  hv.umf = umf.umf;
+  hv.frames.frames = true;
+  // A lesson is made into a teaching video; a plain scene with --video too.
+  hv.frames.video = fo.video || !a.lesson.empty();
   if (!window) {
     std::printf(
         "fluidbed view: no display (DISPLAY and WAYLAND_DISPLAY are unset): writing headless "
         "frames to %s/frames instead\n",
         out.c_str());
     std::fflush(stdout);
-    return view_headless(s, a, script, fo, out);
+    return view_headless(s, script, hv);
   }
 
   ViewEngine::Options eo;
-  eo.start_running = script.empty();  // a script starts paused and runs the bed itself
+  eo.start_running = script.lines.empty();  // a script starts paused and runs the bed itself
   ViewEngine engine(s, eo);
   ViewerOptions vo;
   vo.width = fo.width;
@@ -152,8 +179,11 @@ int view_command(const ViewArgs& a) {
   vo.font = fo.font;
   vo.out_dir = out;
   vo.look = fo.look;
-  vo.script = script;
+  vo.script = script.lines;
   vo.max_fps = a.max_fps;
+  vo.umf = umf.umf;
+  vo.umf_cached = umf.from_cache;
+  vo.scene_velocity = s.gas.enabled ? s.inlet.superficial_velocity : 0.0;
   std::unique_ptr<Viewer> viewer;
   try {
     viewer = std::make_unique<Viewer>(engine, vo);
@@ -164,7 +194,7 @@ int view_command(const ViewArgs& a) {
         e.what(), out.c_str());
     std::fflush(stdout);
     engine.stop();
-    return view_headless(s, a, script, fo, out);
+    return view_headless(s, script, hv);
   }
   engine.start();
   const int status = viewer->run();
@@ -182,6 +212,9 @@ int view_command(const ViewArgs& a) {
         static_cast<long long>(st.engine_steps), st.engine_seconds,
         static_cast<double>(st.engine_steps) / st.engine_seconds,
         static_cast<double>(st.engine_steps) * s.time.dt / st.engine_seconds, es.particles);
+  std::printf("viewer: stopped at t = %.6f s, step %lld, U = %.4f m/s\n", es.time,
+              static_cast<long long>(es.steps), es.superficial_velocity);
+  if (s.gas.enabled) std::printf("viewer: %s\n", describe_curve(es.curve).c_str());
   return status;
 }
 

@@ -1,5 +1,7 @@
-// The viewer's control panel (Dear ImGui): run, gas, colours, arrows, plots, the picked particle,
-// screenshots and recording. Every edit of the simulation goes to the engine as a command.
+// The viewer's control panel (Dear ImGui). A block at the top that never scrolls (run control,
+// pictures, time and speed, what went wrong), then sections that scroll: the gas with the stages
+// of Fig. 6, the live Fig. 6, bubbles and the regime, the plots, colours and layers, the picked
+// particle. Every edit of the simulation goes to the engine as a command.
 #include <imgui.h>
 
 #include <algorithm>
@@ -7,19 +9,32 @@
 #include <cstdio>
 
 #include "render/colour_map.hpp"
+#include "run/umf_estimate.hpp"
+#include "view/presets.hpp"
+#include "view/status_words.hpp"
 #include "view/window.hpp"
 
 namespace fluidbed::app {
 namespace {
+
+// The overlap above which the panel warns: about twice the largest the teaching bed reaches in
+// its own run after start-up (2.8 %, README "Speed"); the paper's stiff bed stays near 1 %.
+constexpr double kOverlapWarning = 0.05;
 
 ImU32 to_imgui(const render::Rgb& c) {
   return IM_COL32(static_cast<int>(c.r * 255.0f), static_cast<int>(c.g * 255.0f),
                   static_cast<int>(c.b * 255.0f), 255);
 }
 
+std::string fmt(const char* f, double a) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, f, a);
+  return buf;
+}
+
 // A horizontal colour bar of the scale with its two ends labelled.
 void colour_bar(const render::ColourScale& scale) {
-  const float w = ImGui::GetContentRegionAvail().x, h = 14.0f;
+  const float w = ImGui::GetContentRegionAvail().x, h = 0.9f * ImGui::GetFontSize();
   const ImVec2 p = ImGui::GetCursorScreenPos();
   ImDrawList* dl = ImGui::GetWindowDrawList();
   constexpr int kSteps = 48;
@@ -44,7 +59,25 @@ void colour_bar(const render::ColourScale& scale) {
   ImGui::TextUnformatted(hi);
 }
 
+// Wrapped text in a colour.
+void wrapped(const ImVec4& colour, const std::string& text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, colour);
+  ImGui::TextWrapped("%s", text.c_str());
+  ImGui::PopStyleColor();
+}
+
+const ImVec4 kRed(1.0f, 0.45f, 0.35f, 1.0f), kOrange(1.0f, 0.75f, 0.3f, 1.0f);
+
 }  // namespace
+
+void Viewer::note_widget(const char* name, const std::string& value) {
+  if (widgets_file_.empty()) return;
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  char line[256];
+  std::snprintf(line, sizeof line, "%s %.1f %.1f %.1f %.1f %s", name, a.x, a.y, b.x, b.y,
+                value.c_str());
+  widget_lines_.emplace_back(line);
+}
 
 void Viewer::draw_particle_info(std::size_t i, bool tooltip) {
   if (!snap_ || i >= snap_->particles()) return;
@@ -60,82 +93,213 @@ void Viewer::draw_particle_info(std::size_t i, bool tooltip) {
               c.particles.size(), c.walls, i < s.overlap.size() ? s.overlap[i] : c.max_overlap);
 }
 
-void Viewer::draw_plots() {
-  const int n = static_cast<int>(plot_t_.size());
-  const float width = ImGui::GetContentRegionAvail().x;
-  if (n < 2) {
-    ImGui::TextDisabled("(the plots start when the bed runs)");
-    return;
-  }
-  const std::size_t first =
-      plot_t_.size() - static_cast<std::size_t>(std::min(n, static_cast<int>(plot_t_.size())));
-  ImGui::Text("t from %.3f to %.3f s", plot_t_[first], plot_t_.back());
-  const auto [dmin, dmax] = std::minmax_element(plot_dp_.begin(), plot_dp_.end());
-  char overlay[64];
-  std::snprintf(overlay, sizeof overlay, "dp %.0f Pa (%.0f to %.0f)", plot_dp_.back(), *dmin,
-                *dmax);
-  ImGui::PlotLines("##dp", plot_dp_.data(), n, 0, overlay, std::min(0.0f, *dmin),
-                   std::max(*dmax, 1.0f), ImVec2(width, 70.0f));
-  const float omax = *std::max_element(plot_overlap_.begin(), plot_overlap_.end());
-  std::snprintf(overlay, sizeof overlay, "max overlap %.2f %% (peak %.2f %%)",
-                100.0f * plot_overlap_.back(), 100.0f * omax);
-  ImGui::PlotLines("##overlap", plot_overlap_.data(), n, 0, overlay, 0.0f, std::max(omax, 1e-4f),
-                   ImVec2(width, 70.0f));
+bool Viewer::bed_is_running() const {
+  return status_.running || status_.stepping || script_runs_the_bed();
 }
 
-void Viewer::draw_panel() {
-  const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(panel_width_, io.DisplaySize.y), ImGuiCond_Always);
-  ImGui::Begin("fluidbed", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoTitleBar);
+bool Viewer::script_runs_the_bed() const {
+  // A script that runs the bed from one `at T` to the next is running it, even at the instant
+  // it stopped there for a screenshot.
+  return !opt_.script.empty() && !script_finished_ && script_wants_running_ && !quit_;
+}
+
+void Viewer::draw_top_block() {
   const EngineStatus& st = status_;
-  ImGui::Text("fluidbed view   %zu particles", st.particles);
-  ImGui::Separator();
+  const float button = 4.6f * ImGui::GetFontSize();
+  const char* run_label = bed_is_running() ? "Pause" : "Run";
+  if (ImGui::Button(run_label, ImVec2(button, 0))) toggle_run();
+  note_widget("run_button", run_label);
+  ImGui::SameLine();
+  if (ImGui::Button("Step", ImVec2(button, 0))) post({ViewCommand::Kind::step, 1.0});
+  note_widget("step_button");
+  ImGui::SameLine();
+  if (ImGui::Button("Reset", ImVec2(button, 0))) post({ViewCommand::Kind::reset, 0.0});
+  note_widget("reset_button");
+  if (ImGui::Button("Screenshot", ImVec2(button * 1.5f, 0)))
+    screenshot_requests_.push_back(next_name("screenshot", ".png"));
+  note_widget("screenshot_button");
+  ImGui::SameLine();
+  const bool recording = video_ || !record_dir_.empty();
+  if (ImGui::Button(recording ? "Stop recording" : "Record", ImVec2(button * 1.5f, 0))) {
+    try {
+      if (recording)
+        stop_recording();
+      else
+        start_recording(next_name("recording", record_mp4_ ? ".mp4" : ""));
+    } catch (const std::exception& e) {
+      message_ = e.what();
+    }
+  }
+  note_widget("record_button", recording ? "recording" : "idle");
+  if (!recording) {
+    ImGui::SameLine();
+    if (ImGui::RadioButton("MP4", record_mp4_)) record_mp4_ = true;
+    ImGui::SameLine();
+    if (ImGui::RadioButton("PNG", !record_mp4_)) record_mp4_ = false;
+  }
 
-  // Run control.
-  if (ImGui::Button(st.running ? "Pause" : "Run", ImVec2(70, 0))) toggle_run();
-  ImGui::SameLine();
-  if (ImGui::Button("Step", ImVec2(70, 0))) post({ViewCommand::Kind::step, 1.0});
-  ImGui::SameLine();
-  if (ImGui::Button("Reset", ImVec2(70, 0))) post({ViewCommand::Kind::reset, 0.0});
+  // Time, what the bed is doing, and its speed in words a class understands.
+  const std::string state = run_state_words(st, script_runs_the_bed());
   ImGui::Text("t = %.4f s   step %lld", st.time, static_cast<long long>(st.steps));
-  ImGui::Text("speed %.3g sim s / wall s, %.0f steps/s%s", st.sim_s_per_wall_s, st.steps_per_s,
-              st.stepping ? "" : " (when last running)");
-  // In words a class understands: a simulated second shown in so many wall seconds.
-  if (st.sim_s_per_wall_s > 0.0 && st.sim_s_per_wall_s < 0.95)
-    ImGui::Text("slow motion x %.1f", 1.0 / st.sim_s_per_wall_s);
-  else if (st.sim_s_per_wall_s >= 0.95 && st.sim_s_per_wall_s <= 1.05)
-    ImGui::Text("real time");
-  else if (st.sim_s_per_wall_s > 1.05)
-    ImGui::Text("fast motion x %.1f", st.sim_s_per_wall_s);
-  ImGui::Text("window %.1f frames/s", static_cast<double>(io.Framerate));
-  if (!st.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", st.error.c_str());
+  ImGui::TextUnformatted(state.c_str());
+  note_widget("state", state);
+  const std::string speed = speed_words(st.sim_s_per_wall_s);
+  ImGui::TextUnformatted(speed.c_str());
+  note_widget("speed", speed);
+  ImGui::TextDisabled("%.0f steps/s, window %.0f frames/s", st.steps_per_s,
+                      static_cast<double>(ImGui::GetIO().Framerate));
+  ImGui::Separator();
+}
 
-  // Gas.
-  if (snap_ && snap_->has_gas()) {
-    ImGui::Separator();
-    ImGui::TextUnformatted("Gas");
-    if (!ImGui::IsAnyItemActive()) velocity_ = static_cast<float>(st.superficial_velocity);
-    // The slider's range is fixed from the scene's own velocity when the panel first shows it: a
-    // range that followed the live value ran away under a held mouse button (each frame's new
-    // velocity widened the range, which moved the value under the pointer again).
-    if (velocity_top_ <= 0.0f)
-      velocity_top_ = std::max(5.0f, 1.5f * static_cast<float>(st.superficial_velocity));
-    if (ImGui::SliderFloat("U (m/s)", &velocity_, 0.0f, velocity_top_, "%.2f"))
-      post({ViewCommand::Kind::velocity, static_cast<double>(velocity_)});
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Ctrl+click to type a velocity");
-    ImGui::Text("jet %.1f m/s (fastest inlet face %.1f m/s)", st.jet_velocity,
-                st.inlet_jet_velocity);
+// What went wrong, what to mind, what was written: at the top of the scrolling sections (the
+// block above keeps its height, so the buttons never move under the pointer).
+void Viewer::draw_messages() {
+  const EngineStatus& st = status_;
+  if (!st.error.empty()) wrapped(kRed, st.error);
+  note_widget("error", st.error.empty() ? "none" : "shown");
+  if (!st.refusal.empty()) wrapped(kOrange, st.refusal);
+  // Deep overlaps (a high gas velocity) are warned of while they last.
+  if (!plot_overlap_.empty()) {
+    const std::size_t recent = std::min<std::size_t>(plot_overlap_.size(), 500);
+    const float worst = *std::max_element(plot_overlap_.end() - static_cast<std::ptrdiff_t>(recent),
+                                          plot_overlap_.end());
+    if (worst > kOverlapWarning) {
+      wrapped(kOrange, fmt("Overlap %.1f %%", 100.0 * worst) +
+                           fmt(" (warning above %.0f %%): the particles are pressed deeper into "
+                               "each other than the contact model is meant for. Lower the gas.",
+                               100.0 * kOverlapWarning));
+      note_widget("overlap_warning", fmt("%.4f", worst));
+    }
+  }
+  if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+}
+
+void Viewer::draw_gas_section() {
+  const EngineStatus& st = status_;
+  if (!ImGui::CollapsingHeader("Gas and the stages of Fig. 6", ImGuiTreeNodeFlags_DefaultOpen))
+    return;
+  if (!ImGui::IsAnyItemActive()) velocity_ = static_cast<float>(st.superficial_velocity);
+  ImGui::SetNextItemWidth(-1.0f);
+  // A fixed range (set when the window opened): the value under a held pointer stays where it is.
+  if (ImGui::SliderFloat("##U", &velocity_, 0.0f, velocity_top_, "U = %.2f m/s"))
+    set_velocity(static_cast<double>(velocity_));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Ctrl+click to type a velocity");
+  note_widget("velocity_slider",
+              fmt("0 %.6g", velocity_top_) + fmt(" %.1f", ImGui::GetStyle().GrabMinSize));
+  {  // Ticks under the slider: U_mf and the scene's own velocity.
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    const float grab = ImGui::GetStyle().GrabMinSize, pad = 2.0f;
+    const auto x_of = [&](double u) {
+      return a.x + pad + 0.5f * grab +
+             static_cast<float>(u / velocity_top_) * (b.x - a.x - 2.0f * pad - grab);
+    };
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float h = ImGui::GetFontSize();
+    const ImVec2 row = ImGui::GetCursorScreenPos();
+    // Two labels that would overlap are put side by side, the lower velocity's on the left.
+    struct Tick {
+      double u;
+      const char* text;
+      ImU32 colour;
+    };
+    Tick ticks[] = {{opt_.umf, "U_mf", IM_COL32(255, 200, 90, 255)},
+                    {opt_.scene_velocity, "scene", IM_COL32(160, 200, 255, 255)}};
+    if (ticks[1].u < ticks[0].u) std::swap(ticks[0], ticks[1]);
+    float right = a.x - 1e9f;
+    for (const Tick& t : ticks) {
+      if (!(t.u > 0.0) || t.u > velocity_top_) continue;
+      const float x = x_of(t.u);
+      dl->AddLine(ImVec2(x, b.y), ImVec2(x, b.y + 0.35f * h), t.colour, 2.0f);
+      const float w = ImGui::CalcTextSize(t.text).x;
+      const float left = std::clamp(std::max(x - 0.5f * w, right + 0.4f * h), a.x, b.x - w);
+      dl->AddText(ImVec2(left, row.y + 0.1f * h), t.colour, t.text);
+      right = left + w;
+    }
+    ImGui::Dummy(ImVec2(b.x - a.x, 1.2f * h));
+  }
+  ImGui::TextDisabled("Ctrl+click the slider to type a velocity");
+  ImGui::Text("jet %.1f m/s (fastest inlet face %.1f m/s)", st.jet_velocity, st.inlet_jet_velocity);
+  if (opt_.umf > 0.0) {
+    ImGui::TextWrapped("U_mf = %.2f m/s (U = %.2f U_mf), measured on this scene: %s%s.", opt_.umf,
+                       st.superficial_velocity / opt_.umf, UmfEstimate::kMethod,
+                       opt_.umf_cached ? " (from the cache)" : "");
+    const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
+    for (std::size_t k = 0; k < std::size(kPresets); ++k) {
+      const Preset& p = kPresets[k];
+      const double u = p.umf_multiple * opt_.umf;
+      char label[96];
+      std::snprintf(label, sizeof label, "%s %.2f", p.label, u);
+      if (k % 2 == 1) ImGui::SameLine();
+      if (ImGui::Button(label, ImVec2(half, 0))) set_velocity(u);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%.2f U_mf = %.2f m/s: %s", p.umf_multiple, u, p.what);
+      note_widget((std::string("preset_") + p.name).c_str(), fmt("%.6g", u));
+    }
   }
   if (ImGui::Button(st.ideal ? "Back to the scene's contacts" : "Ideal case (eta = 0, gamma = 0)"))
     post({ViewCommand::Kind::ideal, st.ideal ? 0.0 : 1.0});
-  if (st.ideal) ImGui::TextUnformatted("ideal: contact damping 0, friction 0");
+  ImGui::Text("contacts: %.0f N/m%s", st.stiffness, st.ideal ? ", damping 0, friction 0" : "");
+}
 
-  // Colours.
-  ImGui::Separator();
-  ImGui::TextUnformatted("Colour (c)");
+void Viewer::draw_curve_section() {
+  if (!ImGui::CollapsingHeader("Fig. 6 live: pressure drop against U",
+                               ImGuiTreeNodeFlags_DefaultOpen))
+    return;
+  const CurveState& c = status_.curve;
+  draw_curve_plot(11.0f * ImGui::GetFontSize());
+  ImGui::TextWrapped("%s", describe_phase(c).c_str());
+  if (c.umf.ok)
+    ImGui::TextWrapped("U_mf from the decreasing branch: %.2f m/s (the sweep's fit)", c.umf.umf);
+  else
+    ImGui::TextDisabled("U_mf: lower U in steps through the bed's U_mf");
+  // Settling time and averaging window, simulated seconds.
+  const float field = 4.0f * ImGui::GetFontSize();
+  ImGui::SetNextItemWidth(field);
+  if (ImGui::InputFloat("settle (s)", &settle_edit_, 0.0f, 0.0f, "%.2f",
+                        ImGuiInputTextFlags_EnterReturnsTrue) ||
+      ImGui::IsItemDeactivatedAfterEdit())
+    post({ViewCommand::Kind::settle, std::max(0.0, static_cast<double>(settle_edit_))});
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(field);
+  if (ImGui::InputFloat("average (s)", &average_edit_, 0.0f, 0.0f, "%.2f",
+                        ImGuiInputTextFlags_EnterReturnsTrue) ||
+      ImGui::IsItemDeactivatedAfterEdit())
+    post({ViewCommand::Kind::average, std::max(0.01, static_cast<double>(average_edit_))});
+  if (!ImGui::IsAnyItemActive()) {
+    settle_edit_ = static_cast<float>(c.settle);
+    average_edit_ = static_cast<float>(c.window);
+  }
+  if (ImGui::Button("Save CSV")) save_curve_file(next_name("curve", ".csv"));
+  ImGui::SameLine();
+  if (ImGui::Button("Save PNG")) save_curve_file(next_name("curve", ".png"));
+  ImGui::SameLine();
+  ImGui::TextDisabled("Reset clears it");
+}
+
+void Viewer::draw_bed_section() {
+  if (!ImGui::CollapsingHeader("Bubbles and the regime", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (const auto& v = status_.bubbles; v && snap_ && snap_->has_gas()) {
+    const BubbleStatistics& w = v->window;
+    ImGui::Text("regime (last %.1f s): %s", v->window_s, regime_words(*v).c_str());
+    note_widget("regime", regime_words(*v));
+    std::string line = fmt("%.1f bubbles formed per s", w.formed_per_s);
+    if (std::isfinite(w.mean_d_eq_m) && w.bubble_frames > 0)
+      line += fmt(", mean size %.0f mm", 1000.0 * w.mean_d_eq_m);
+    if (std::isfinite(w.mean_rise_velocity_m_s) && w.velocity_samples > 0)
+      line += fmt(", rising at %.2f m/s", w.mean_rise_velocity_m_s);
+    line += fmt("; a slug in %.0f %% of the frames", 100.0 * w.slugging_fraction);
+    ImGui::TextWrapped("%s", line.c_str());
+  } else {
+    ImGui::TextDisabled("(no gas: no bubbles)");
+  }
+  if (ImGui::Checkbox("bubble outlines", &look_.bubble_outlines))
+    post({ViewCommand::Kind::bubbles, look_.bubble_outlines ? 1.0 : 0.0});
+  ImGui::SameLine();
+  ImGui::TextDisabled("hover a bubble: its size");
+}
+
+void Viewer::draw_look_section() {
+  if (!ImGui::CollapsingHeader("Colours and layers")) return;
   using render::ColourBy;
   const std::pair<ColourBy, const char*> modes[] = {{ColourBy::speed, "speed"},
                                                     {ColourBy::force, "force"},
@@ -143,7 +307,7 @@ void Viewer::draw_panel() {
                                                     {ColourBy::overlap, "overlap"},
                                                     {ColourBy::height, "mixing"}};
   for (std::size_t k = 0; k < std::size(modes); ++k) {
-    if (k > 0) ImGui::SameLine();
+    if (k > 0 && k != 3) ImGui::SameLine();
     if (ImGui::RadioButton(modes[k].second, look_.colour_by == modes[k].first)) {
       look_.colour_by = modes[k].first;
       look_.range_min = look_.range_max = 0.0;
@@ -152,9 +316,6 @@ void Viewer::draw_panel() {
   if (snap_)
     colour_bar(render::colour_scale(look_.colour_by, *snap_, look_.range_min, look_.range_max,
                                     look_.height_bands));
-
-  // Arrows and background.
-  ImGui::Separator();
   ImGui::Checkbox("gas arrows", &look_.gas_arrows);
   ImGui::SameLine();
   float gas_ref = static_cast<float>(look_.gas_arrow_reference);
@@ -170,56 +331,48 @@ void Viewer::draw_panel() {
                          ImGuiSliderFlags_Logarithmic))
     look_.particle_arrow_reference = part_ref;
   ImGui::Checkbox("porosity background", &look_.porosity_background);
+  ImGui::Text("zoom %.1fx", look_.zoom.bed >= 0 ? look_.zoom.factor : 1.0);
   ImGui::SameLine();
-  if (ImGui::Checkbox("bubble outlines", &look_.bubble_outlines))
-    post({ViewCommand::Kind::bubbles, look_.bubble_outlines ? 1.0 : 0.0});
-  ImGui::SameLine();
-  ImGui::Text("zoom %.1fx", view_.zoom);
-  ImGui::SameLine();
-  if (ImGui::SmallButton("1x")) view_ = {};
+  if (ImGui::SmallButton("1x")) look_.zoom = {};
+}
 
-  // Plots.
-  ImGui::Separator();
-  draw_plots();
-
-  // The picked particle.
-  ImGui::Separator();
-  if (tracked_ >= 0 && snap_) {
-    draw_particle_info(static_cast<std::size_t>(tracked_), false);
-    if (ImGui::SmallButton("stop tracking")) {
-      tracked_ = -1;
-      trajectory_.clear();
-    }
-  } else {
-    ImGui::TextDisabled("hover a particle; click to track it");
-  }
-
-  // Pictures.
-  ImGui::Separator();
-  if (ImGui::Button("Screenshot")) screenshot_requests_.push_back(next_name("screenshot", ".png"));
-  ImGui::SameLine();
-  const bool recording = video_ || !record_dir_.empty();
-  if (ImGui::Button(recording ? "Stop recording" : "Record")) {
-    try {
-      if (recording)
-        stop_recording();
-      else
-        start_recording(next_name("recording", record_mp4_ ? ".mp4" : ""));
-    } catch (const std::exception& e) {
-      message_ = e.what();
+void Viewer::draw_panel() {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(panel_.width, io.DisplaySize.y), ImGuiCond_Always);
+  ImGui::Begin("fluidbed", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
+  ImFont* font = fonts_.front().second;
+  for (const auto& [size, f] : fonts_)
+    if (size <= panel_.font) font = f;
+  ImGui::PushFont(font);
+  draw_top_block();
+  ImGui::BeginChild("sections");
+  draw_messages();
+  draw_gas_section();
+  draw_curve_section();
+  draw_bed_section();
+  if (ImGui::CollapsingHeader("dp and overlap against time", ImGuiTreeNodeFlags_DefaultOpen))
+    draw_plots();
+  draw_look_section();
+  if (ImGui::CollapsingHeader("The picked particle", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (tracked_ >= 0 && snap_) {
+      draw_particle_info(static_cast<std::size_t>(tracked_), false);
+      if (ImGui::SmallButton("stop tracking")) {
+        tracked_ = -1;
+        trajectory_.clear();
+      }
+    } else {
+      ImGui::TextDisabled("hover a particle; click to track it");
     }
   }
-  if (!recording) {
-    ImGui::SameLine();
-    if (ImGui::RadioButton("MP4", record_mp4_)) record_mp4_ = true;
-    ImGui::SameLine();
-    if (ImGui::RadioButton("PNG", !record_mp4_)) record_mp4_ = false;
-  }
-  if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
   ImGui::Separator();
   ImGui::TextDisabled(
-      "space run/pause, s step, r reset, c colour\nwheel zoom, drag pan, "
-      "right double-click 1x");
+      "space run/pause, s step, r reset, c colour\nwheel: zoom the bed under the pointer,\n"
+      "drag: pan, right double-click: 1x");
+  ImGui::EndChild();
+  ImGui::PopFont();
   ImGui::End();
 }
 

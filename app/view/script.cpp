@@ -1,15 +1,17 @@
 #include "view/script.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
-#include <iterator>
-#include <utility>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
+#include "view/presets.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -49,8 +51,39 @@ struct Reader {
 };
 
 const char* kCommands =
-    "velocity, ideal, run, pause, step, reset, wait, colour, gas-arrows, particle-arrows, "
-    "porosity, bubbles, track, zoom, screenshot, record, quit";
+    "velocity, preset, ideal, stiffness, run, pause, step, reset, wait, colour, gas-arrows, "
+    "particle-arrows, porosity, bubbles, track, zoom, screenshot, record, settle, average, curve, "
+    "caption, quit";
+
+// A line's words: split at white space, a double-quoted part ("a caption, with spaces") one word
+// without its quotes; `#` outside quotes starts a comment. False for an unclosed quote.
+bool split_words(const std::string& raw, std::vector<std::string>& words) {
+  std::string w;
+  bool in_word = false, quoted = false;
+  for (char c : raw) {
+    if (quoted) {
+      if (c == '"') {
+        quoted = false;
+      } else {
+        w += c;
+      }
+      continue;
+    }
+    if (c == '#') break;
+    if (c == '"') {
+      quoted = in_word = true;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      if (in_word) words.push_back(w);
+      w.clear();
+      in_word = false;
+    } else {
+      w += c;
+      in_word = true;
+    }
+  }
+  if (in_word) words.push_back(w);
+  return !quoted;
+}
 
 ScriptLine parse_line(Reader& r, int line_number) {
   ScriptLine l;
@@ -78,6 +111,40 @@ ScriptLine parse_line(Reader& r, int line_number) {
     l.kind = Kind::velocity;
     l.number = r.number("a superficial velocity in m/s");
     if (l.number < 0.0) r.fail("velocity must be >= 0 m/s");
+    if (!r.done()) {
+      l.text = r.word("umf");
+      if (l.text != "umf") r.fail("velocity takes m/s, or a multiple of U_mf: 'velocity 1.2 umf'");
+    }
+  } else if (cmd == "preset") {
+    l.kind = Kind::preset;
+    l.text = r.word(std::string("a preset (") + preset_names() + ")");
+    if (!find_preset(l.text))
+      r.fail("unknown preset '" + l.text + "' (known: " + preset_names() + ")");
+  } else if (cmd == "stiffness") {
+    l.kind = Kind::stiffness;
+    const std::string w = r.word("a contact stiffness in N/m, or scene");
+    if (w == "scene") {
+      l.number = 0.0;
+    } else {
+      --r.next;
+      l.number = r.number("a contact stiffness in N/m, or scene");
+      if (!(l.number > 0.0)) r.fail("stiffness must be > 0 N/m");
+    }
+  } else if (cmd == "settle" || cmd == "average") {
+    l.kind = cmd == "settle" ? Kind::settle : Kind::average;
+    l.number = r.number("simulated seconds");
+    if (cmd == "settle" ? l.number < 0.0 : !(l.number > 0.0))
+      r.fail(cmd + (cmd == "settle" ? " needs seconds >= 0" : " needs seconds > 0"));
+  } else if (cmd == "curve") {
+    l.kind = Kind::curve;
+    l.text = r.word("a file name (.csv or .png)");
+    const std::string ext = std::filesystem::path(l.text).extension().string();
+    if (ext != ".csv" && ext != ".png")
+      r.fail("curve saves FILE.csv or FILE.png, not '" + l.text + "'");
+  } else if (cmd == "caption") {
+    l.kind = Kind::caption;
+    l.text = r.word("a caption in double quotes, or off");
+    if (l.text == "off") l.text.clear();
   } else if (cmd == "run") {
     l.kind = Kind::run;
   } else if (cmd == "pause") {
@@ -131,25 +198,36 @@ ScriptLine parse_line(Reader& r, int line_number) {
 
 }  // namespace
 
-std::vector<ScriptLine> parse_view_script(const std::string& text, const std::string& origin) {
-  std::vector<ScriptLine> lines;
+bool ViewScript::needs_umf() const {
+  return std::any_of(lines.begin(), lines.end(), [](const ScriptLine& l) {
+    return l.kind == Kind::preset || (l.kind == Kind::velocity && l.text == "umf");
+  });
+}
+
+ViewScript parse_view_script(const std::string& text, const std::string& origin) {
+  ViewScript script;
   std::istringstream in(text);
   std::string raw;
   int number = 0;
   while (std::getline(in, raw)) {
     ++number;
-    if (const auto hash = raw.find('#'); hash != std::string::npos) raw.erase(hash);
     Reader r;
     r.where = origin + " line " + std::to_string(number);
-    std::istringstream words(raw);
-    for (std::string w; words >> w;) r.words.push_back(w);
+    if (!split_words(raw, r.words)) r.fail("a double quote is not closed");
     if (r.words.empty()) continue;
-    lines.push_back(parse_line(r, number));
+    if (r.words.front() == "scene") {  // a lesson's scene: before every command
+      if (!script.lines.empty() || !script.scene.empty())
+        r.fail("'scene' must come before every other command");
+      if (r.words.size() != 2) r.fail("scene takes one scene file name");
+      script.scene = r.words[1];
+      continue;
+    }
+    script.lines.push_back(parse_line(r, number));
   }
-  return lines;
+  return script;
 }
 
-std::vector<ScriptLine> load_view_script(const std::string& path) {
+ViewScript load_view_script(const std::string& path) {
   std::ifstream in = open_input_file(path, "script", std::ios::in);
   std::ostringstream text;
   text << in.rdbuf();

@@ -1,5 +1,7 @@
 #include "view/script_runner.hpp"
 
+#include "view/presets.hpp"
+
 namespace fluidbed::app {
 
 void ScriptRunner::advance(ScriptTarget& target) {
@@ -22,7 +24,22 @@ void ScriptRunner::apply(const ScriptLine& l, ScriptTarget& t) {
   const bool on = l.number != 0.0;
   bool done = false;
   switch (l.kind) {
-    case K::velocity: done = t.velocity(l.number); break;
+    case K::velocity:
+      if (l.text != "umf")
+        done = t.velocity(l.number);
+      else if (t.umf() > 0.0)
+        done = t.velocity(l.number * t.umf());
+      break;
+    case K::preset:
+      if (const Preset* p = find_preset(l.text); p && t.umf() > 0.0)
+        done = t.velocity(p->umf_multiple * t.umf());
+      break;
+    // clang-format off
+    case K::stiffness: done = t.stiffness(l.number); break;
+    case K::settle: done = t.settle(l.number); break;
+    case K::average: done = t.average(l.number); break;
+    case K::curve: done = t.save_curve(l.text); break;
+    case K::caption: done = t.caption(l.text); break;
     case K::ideal: done = t.ideal(on); break;
     case K::run: done = t.run_switch(true); break;
     case K::pause: done = t.run_switch(false); break;
@@ -40,6 +57,7 @@ void ScriptRunner::apply(const ScriptLine& l, ScriptTarget& t) {
     case K::record: done = t.record(l.text); break;
     case K::record_stop: done = t.record_stop(); break;
     case K::quit: done = t.quit(); break;
+      // clang-format on
   }
   if (!done) t.unsupported(l);
 }

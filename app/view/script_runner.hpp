@@ -29,9 +29,18 @@ class ScriptTarget {
   virtual bool stopped() const = 0;
   virtual void unsupported(const ScriptLine& line) = 0;
 
+  // The scene's measured minimum fluidization velocity (m/s; 0: not measured): presets and
+  // `velocity F umf` are carried out as velocity(F * umf()).
+  virtual double umf() const { return 0.0; }
+
   // The commands, as view/script.hpp lists them.
   virtual bool velocity(double /*m_per_s*/) { return false; }
   virtual bool ideal(bool /*on*/) { return false; }
+  virtual bool stiffness(double /*N_per_m, 0: the scene's*/) { return false; }
+  virtual bool settle(double /*simulated_seconds*/) { return false; }
+  virtual bool average(double /*simulated_seconds*/) { return false; }
+  virtual bool save_curve(const std::string& /*file .csv or .png*/) { return false; }
+  virtual bool caption(const std::string& /*text, empty: none*/) { return false; }
   virtual bool run_switch(bool /*running: run, or pause*/) { return false; }
   virtual bool step(double /*count*/) { return false; }
   virtual bool reset() { return false; }

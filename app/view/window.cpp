@@ -9,12 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
+#include <cstdlib>
 #include <stdexcept>
 #include <thread>
-
-#include "core/errors.hpp"
-#include "render/image.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -24,54 +21,16 @@ double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
-constexpr double kRecordFps = 25.0;        // frames per second of recordings (wall-clock time)
-constexpr double kMaxFramePixels = 4.0e6;  // zoomed frames are drawn at most this large
 constexpr std::size_t kPlotPoints = 4000;  // samples kept for the plots
 constexpr std::size_t kTrajectoryPoints = 20000;
-
-// The window as shown (the back buffer, after the panel was drawn), rows from the top.
-render::Image read_window(const render::GlContext& context) {
-  const auto& gl = context.gl();
-  render::Image img;
-  img.width = context.width();
-  img.height = context.height();
-  std::vector<std::uint8_t> rgba(static_cast<std::size_t>(img.width) *
-                                 static_cast<std::size_t>(img.height) * 4);
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  gl.ReadBuffer(GL_BACK);
-  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  img.rgb.resize(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height) * 3);
-  for (int y = 0; y < img.height; ++y) {
-    const std::uint8_t* src = rgba.data() + static_cast<std::size_t>(img.height - 1 - y) *
-                                                static_cast<std::size_t>(img.width) * 4;
-    std::uint8_t* dst =
-        img.rgb.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(img.width) * 3;
-    for (int x = 0; x < img.width; ++x, src += 4, dst += 3) {
-      dst[0] = src[0];
-      dst[1] = src[1];
-      dst[2] = src[2];
-    }
-  }
-  return img;
-}
-
-// `img` cut or padded (black) to w x h: a recording keeps the size it started with.
-render::Image fit(const render::Image& img, int w, int h) {
-  if (img.width == w && img.height == h) return img;
-  render::Image out;
-  out.width = w;
-  out.height = h;
-  out.rgb.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 0);
-  for (int y = 0; y < std::min(h, img.height); ++y)
-    std::copy_n(img.pixel(0, y), static_cast<std::size_t>(std::min(w, img.width)) * 3,
-                out.rgb.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3);
-  return out;
-}
 
 template <class T>
 void keep_last(std::vector<T>& v, std::size_t n) {
   if (v.size() > n + n / 4) v.erase(v.begin(), v.end() - static_cast<std::ptrdiff_t>(n));
+}
+
+void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+  if (auto* v = static_cast<Viewer*>(glfwGetWindowUserPointer(window))) v->key_event(key, action);
 }
 
 }  // namespace
@@ -83,11 +42,20 @@ Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
   stats_.gl_version = context_->version_string();
   auto* window = static_cast<GLFWwindow*>(context_->native_window());
   glfwSetWindowTitle(window, "fluidbed view");
+  // Ours first: ImGui's key callback, installed next, calls it before its own.
+  glfwSetWindowUserPointer(window, this);
+  glfwSetKeyCallback(window, &on_key);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // no imgui.ini in the user's folder
-  io.Fonts->AddFontFromFileTTF(opt_.font.c_str(), 15.0f);
+  // Latin, Greek (eta, Delta p) and the signs the axes' tick labels use (a true minus, x 10 to a
+  // superscript power).
+  static const ImWchar ranges[] = {0x0020, 0x00FF, 0x0391, 0x03C9, 0x2070, 0x209F,
+                                   0x2212, 0x2212, 0x2026, 0x2026, 0};
+  for (float size : kPanelFontSizes)
+    fonts_.emplace_back(size,
+                        io.Fonts->AddFontFromFileTTF(opt_.font.c_str(), size, nullptr, ranges));
   ImGui::StyleColorsDark();
   ImGui::GetStyle().WindowRounding = 0.0f;
   imgui_glfw_ = ImGui_ImplGlfw_InitForOpenGL(window, true);
@@ -100,10 +68,19 @@ Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
     throw std::runtime_error("the panel (Dear ImGui) could not start on this GL context");
   }
   if (look_.bubble_outlines) post({ViewCommand::Kind::bubbles, 1.0});
-  if (!opt_.script.empty()) {
-    settle_frames_ = 0;
-    script_wants_running_ = true;
-  }
+  look_.caption_band = true;
+  // The slider's range, fixed for the session (a range that followed the live value ran away
+  // under a held button): 2.5 U_mf, or beyond the scene's own velocity when that is higher.
+  velocity_top_ = static_cast<float>(std::max({2.5 * opt_.umf, 1.25 * opt_.scene_velocity, 1.0}));
+  const ViewEngine::Options& eo = engine_.options();
+  settle_edit_ = static_cast<float>(eo.settle);
+  average_edit_ = static_cast<float>(eo.average);
+  if (const char* w = std::getenv("FLUIDBED_VIEW_WIDGETS"); w && *w) widgets_file_ = w;
+}
+
+void Viewer::key_event(int key, int action) {
+  // A press acts once; a held `s` repeats (single steps).
+  if (action == GLFW_PRESS || (action == GLFW_REPEAT && key == GLFW_KEY_S)) keys_.push_back(key);
 }
 
 Viewer::~Viewer() {
@@ -112,6 +89,8 @@ Viewer::~Viewer() {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fluidbed view: %s\n", e.what());
   }
+  if (auto* window = static_cast<GLFWwindow*>(context_->native_window()))
+    glfwSetWindowUserPointer(window, nullptr);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
@@ -161,6 +140,8 @@ void Viewer::take_newest() {
   keep_last(plot_dp_, kPlotPoints);
   keep_last(plot_overlap_, kPlotPoints);
   status_ = st;
+  // The regime in words over the bed (from the last second's bubbles; gas beds only).
+  look_.bed_label = st.bubbles && snap_ && snap_->has_gas() ? regime_words(*st.bubbles) : "";
   if (s && seq != snap_seq_) {
     snap_ = std::move(s);
     snap_seq_ = seq;
@@ -178,9 +159,12 @@ void Viewer::take_newest() {
 void Viewer::frame() {
   const auto t_start = Clock::now();
   take_newest();
-  if (!opt_.script.empty() && !status_.error.empty() && exit_status_ == 0) {
-    std::fprintf(stderr, "fluidbed: %s\n", status_.error.c_str());
-    exit_status_ = 3;
+  if (!opt_.script.empty() && exit_status_ == 0 &&
+      (!status_.error.empty() || !status_.refusal.empty())) {
+    // A script stops at a failure (status 3) or a refused command (bad input, status 2).
+    const bool failed = !status_.error.empty();
+    std::fprintf(stderr, "fluidbed: %s\n", (failed ? status_.error : status_.refusal).c_str());
+    exit_status_ = failed ? 3 : 2;
     quit_ = true;
     return;
   }
@@ -188,26 +172,17 @@ void Viewer::frame() {
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
   step_script();
-
-  // Where the bed goes, and how large its frame is drawn (larger when zoomed, up to a limit).
-  const ImGuiIO& io = ImGui::GetIO();
-  area_ = {panel_width_, 0.0f, std::max(panel_width_ + 16.0f, io.DisplaySize.x),
-           std::max(16.0f, io.DisplaySize.y)};
-  const double fb_scale = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0;
-  const double aw = area_.width() * fb_scale, ah = area_.height() * fb_scale;
-  const double magnify =
-      std::max(1.0, std::min(view_.zoom, std::sqrt(kMaxFramePixels / (aw * ah))));
-  frame_w_ = std::max(16, static_cast<int>(std::lround(aw * magnify)));
-  frame_h_ = std::max(16, static_cast<int>(std::lround(ah * magnify)));
-  if (snap_) layout_ = render::frame_layout(*snap_, frame_w_, frame_h_, look_.close_up);
-
+  place_frame();
+  handle_keys();
   handle_scene_input();
+  widget_lines_.clear();
   draw_panel();
   draw_overlays();
   ImGui::Render();
   draw_scene();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   capture_if_requested();
+  if (!widgets_file_.empty()) write_widgets();
   draw_seconds_ += seconds_between(t_start, Clock::now());
   context_->present();  // swaps and polls events
   ++stats_.frames;
@@ -216,6 +191,48 @@ void Viewer::frame() {
                                     std::chrono::duration<double>(1.0 / opt_.max_fps));
     std::this_thread::sleep_until(next);
   }
+}
+
+// The panel's size and font follow the window's; the bed's frame fills the rest at the
+// framebuffer's resolution. The close-up is dropped when the area is too narrow for both panels
+// at the bed's full height (the beds would shrink into slivers); the caption band is always kept.
+void Viewer::place_frame() {
+  const ImGuiIO& io = ImGui::GetIO();
+  panel_ = panel_layout(static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y));
+  area_ = {panel_.width, 0.0f, std::max(panel_.width + 16.0f, io.DisplaySize.x),
+           std::max(16.0f, io.DisplaySize.y)};
+  fb_scale_ = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
+  frame_w_ = std::max(16, static_cast<int>(std::lround(area_.width() * fb_scale_)));
+  frame_h_ = std::max(16, static_cast<int>(std::lround(area_.height() * fb_scale_)));
+  if (!snap_) return;
+  render::RenderSettings look = look_;
+  look.close_up = opt_.look.close_up;
+  if (look.close_up > 0.0) {
+    look.zoom = {};
+    const render::FrameLayout both = render::frame_layout_for(*snap_, look, frame_w_, frame_h_);
+    const render::FrameLayout alone = render::frame_layout(*snap_, frame_w_, frame_h_, 0.0, true);
+    if (both.beds.front().scale < 0.8 * alone.beds.front().scale) look.close_up = 0.0;
+  }
+  if (look.close_up != look_.close_up) look_.zoom = {};  // the panels changed
+  look_.close_up = look.close_up;
+  follow_tracked();
+  layout_ = render::frame_layout_for(*snap_, look_, frame_w_, frame_h_);
+}
+
+// A tracked particle stays in sight: a zoomed panel's centre follows it.
+void Viewer::follow_tracked() {
+  if (tracked_ < 0 || !snap_ || static_cast<std::size_t>(tracked_) >= snap_->particles() ||
+      look_.zoom.bed < 0)
+    return;
+  look_.zoom.x = snap_->x[static_cast<std::size_t>(tracked_)];
+  look_.zoom.y = snap_->y[static_cast<std::size_t>(tracked_)];
+}
+
+float Viewer::to_window_x(double fx) const {
+  return area_.x0 + static_cast<float>(fx) / fb_scale_;
+}
+float Viewer::to_window_y(double fy) const {
+  return area_.y0 + static_cast<float>(fy) / fb_scale_;
 }
 
 void Viewer::draw_scene() {
@@ -227,42 +244,82 @@ void Viewer::draw_scene() {
   gl.Clear(GL_COLOR_BUFFER_BIT);
   if (snap_) {
     renderer_->draw_frame(*snap_, look_, frame_w_, frame_h_);
-    const ImGuiIO& io = ImGui::GetIO();
-    const float sx = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
-    const float sy = io.DisplayFramebufferScale.y > 0.0f ? io.DisplayFramebufferScale.y : 1.0f;
-    const render::Rect dst{area_.x0 * sx, area_.y0 * sy, area_.x1 * sx, area_.y1 * sy};
-    renderer_->blit_region_to_default(render::visible_rect(view_, frame_w_, frame_h_), dst, fbh);
+    const render::Rect src{0.0f, 0.0f, static_cast<float>(frame_w_), static_cast<float>(frame_h_)};
+    const render::Rect dst{area_.x0 * fb_scale_, area_.y0 * fb_scale_,
+                           area_.x0 * fb_scale_ + static_cast<float>(frame_w_),
+                           area_.y0 * fb_scale_ + static_cast<float>(frame_h_)};
+    renderer_->blit_region_to_default(src, dst, fbh);
   }
   gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   gl.Viewport(0, 0, fbw, fbh);
 }
 
+// Keys act on their press, queued by GLFW's callback: a tap shorter than a frame is not lost.
+void Viewer::handle_keys() {
+  std::vector<int> keys;
+  keys.swap(keys_);
+  if (ImGui::GetIO().WantCaptureKeyboard) return;  // typing into a field
+  for (int key : keys) {
+    switch (key) {
+      case GLFW_KEY_SPACE:
+        toggle_run();
+        break;
+      case GLFW_KEY_S:
+        post({ViewCommand::Kind::step, 1.0});
+        break;
+      case GLFW_KEY_R:
+        post({ViewCommand::Kind::reset, 0.0});
+        break;
+      case GLFW_KEY_C:
+        cycle_colour();
+        break;
+      default:
+        break;
+    }
+  }
+}
+
 void Viewer::handle_scene_input() {
   const ImGuiIO& io = ImGui::GetIO();
-  if (!io.WantCaptureKeyboard) {
-    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) toggle_run();
-    if (ImGui::IsKeyPressed(GLFW_KEY_S)) post({ViewCommand::Kind::step, 1.0});
-    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) post({ViewCommand::Kind::reset, 0.0});
-    if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) cycle_colour();
-  }
   hovered_.reset();
+  hovered_bubble_ = nullptr;
   const ImVec2 m = io.MousePos;
   const bool inside = m.x >= area_.x0 && m.x < area_.x1 && m.y >= area_.y0 && m.y < area_.y1;
   // A pointer that never moved (a virtual display, a scripted demo) points at nothing.
   if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) mouse_moved_ = true;
   if (io.WantCaptureMouse || !inside || !snap_ || !mouse_moved_) return;
-  const double u = (m.x - area_.x0) / area_.width(), v = (m.y - area_.y0) / area_.height();
-  if (io.MouseWheel != 0.0f)
-    view_.zoom_about(std::pow(1.2, static_cast<double>(io.MouseWheel)), u, v);
+  const double fx = (m.x - area_.x0) * fb_scale_, fy = (m.y - area_.y0) * fb_scale_;
+  const int bed = render::bed_at(layout_, fx, fy);
+  double wx = 0.0, wy = 0.0;
+  const bool in_bed = render::frame_to_world(layout_, fx, fy, wx, wy);
+  // The wheel zooms the panel under the pointer about the point under it; dragging pans it.
+  if (io.MouseWheel != 0.0f && bed >= 0 && in_bed) {
+    const render::BedView& b = layout_.beds[static_cast<std::size_t>(bed)];
+    // Unzoomed, the panel's centre shows the middle of the part of the bed it holds.
+    render::BedZoom z = look_.zoom.bed == bed
+                            ? look_.zoom
+                            : render::BedZoom{bed, 1.0, 0.5 * b.inside.width() / b.scale,
+                                              0.5 * b.inside.height() / b.scale};
+    const double before = z.factor;
+    z.factor = std::clamp(z.factor * std::pow(1.2, static_cast<double>(io.MouseWheel)), 1.0, 16.0);
+    // Keep (wx, wy) under the pointer: the centre moves toward it by 1 - before / after.
+    z.x += (wx - z.x) * (1.0 - before / z.factor);
+    z.y += (wy - z.y) * (1.0 - before / z.factor);
+    look_.zoom = z.factor > 1.0 ? z : render::BedZoom{};
+    layout_ = render::frame_layout_for(*snap_, look_, frame_w_, frame_h_);
+  }
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left) ||
       ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
-    const ImVec2 d = io.MouseDelta;
-    view_.pan_by(d.x / area_.width(), d.y / area_.height());
+    if (look_.zoom.bed >= 0) {
+      const double s = layout_.beds[static_cast<std::size_t>(look_.zoom.bed)].scale / fb_scale_;
+      look_.zoom.x -= io.MouseDelta.x / s;
+      look_.zoom.y += io.MouseDelta.y / s;
+    }
     return;
   }
-  double fx = 0.0, fy = 0.0;
-  render::window_to_frame(view_, area_, frame_w_, frame_h_, m.x, m.y, fx, fy);
+  if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Right)) look_.zoom = {};
   hovered_ = render::pick_particle(*snap_, layout_, fx, fy);
+  if (in_bed && status_.bubbles) hovered_bubble_ = status_.bubbles->region_at(wx, wy);
   // A click (no drag) picks the particle to track; a click on nothing stops tracking.
   if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
       ImGui::GetMouseDragDelta(ImGuiMouseButton_Left, 0.0f).x == 0.0f &&
@@ -271,50 +328,14 @@ void Viewer::handle_scene_input() {
     trajectory_.clear();
     trajectory_step_ = -1;
   }
-  if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Right)) view_ = {};
-  if (hovered_) {
-    ImGui::BeginTooltip();
-    draw_particle_info(*hovered_, true);
-    ImGui::EndTooltip();
-  }
+  if (hovered_ || hovered_bubble_) draw_hover_tooltip(hovered_, hovered_bubble_);
 }
 
-void Viewer::draw_overlays() {
-  if (!snap_ || layout_.beds.empty()) return;
-  ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  const render::Rect v = render::visible_rect(view_, frame_w_, frame_h_);
-  const double px_per_frame_px = area_.width() / v.width();
-  dl->PushClipRect(ImVec2(area_.x0, area_.y0), ImVec2(area_.x1, area_.y1), true);
-  const auto to_window = [&](double x, double y) {
-    double fx = 0.0, fy = 0.0, wx = 0.0, wy = 0.0;
-    render::world_to_frame(layout_, x, y, fx, fy);
-    render::frame_to_window(view_, area_, frame_w_, frame_h_, fx, fy, wx, wy);
-    return ImVec2(static_cast<float>(wx), static_cast<float>(wy));
-  };
-  const double scale = layout_.beds.front().scale * px_per_frame_px;  // window px per m
-  if (tracked_ >= 0 && static_cast<std::size_t>(tracked_) < snap_->particles()) {
-    std::vector<ImVec2> pts;
-    pts.reserve(trajectory_.size());
-    for (const auto& [x, y] : trajectory_) pts.push_back(to_window(x, y));
-    if (pts.size() > 1)
-      dl->AddPolyline(pts.data(), static_cast<int>(pts.size()), IM_COL32(220, 30, 30, 230), 0,
-                      2.0f);
-    const auto i = static_cast<std::size_t>(tracked_);
-    dl->AddCircle(to_window(snap_->x[i], snap_->y[i]),
-                  std::max(4.0f, static_cast<float>(snap_->radius[i] * scale) + 2.0f),
-                  IM_COL32(220, 30, 30, 255), 0, 2.5f);
-  }
-  if (hovered_) {
-    const std::size_t i = *hovered_;
-    dl->AddCircle(to_window(snap_->x[i], snap_->y[i]),
-                  std::max(4.0f, static_cast<float>(snap_->radius[i] * scale) + 1.5f),
-                  IM_COL32(255, 255, 255, 255), 0, 2.0f);
-  }
-  dl->PopClipRect();
-}
-
+// Run or pause as the button says: a bed a script is running pauses, the script with it.
 void Viewer::toggle_run() {
-  post({status_.running ? ViewCommand::Kind::pause : ViewCommand::Kind::run, 0.0});
+  const bool pause = bed_is_running();
+  if (!opt_.script.empty()) script_wants_running_ = !pause;
+  post({pause ? ViewCommand::Kind::pause : ViewCommand::Kind::run, 0.0});
 }
 
 void Viewer::cycle_colour() {
@@ -325,105 +346,6 @@ void Viewer::cycle_colour() {
   while (k < std::size(order) && order[k] != look_.colour_by) ++k;
   look_.colour_by = order[(k + 1) % std::size(order)];
   look_.range_min = look_.range_max = 0.0;  // the new quantity's own range
-}
-
-std::string Viewer::next_name(const std::string& stem, const std::string& ext) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(opt_.out_dir, ec);
-  for (;;) {
-    char name[64];
-    std::snprintf(name, sizeof name, "%s_%03d%s", stem.c_str(), ++counter_, ext.c_str());
-    const fs::path p = fs::path(opt_.out_dir) / name;
-    if (!fs::exists(p, ec)) return p.string();
-  }
-}
-
-void Viewer::capture_if_requested() {
-  const bool recording = video_ || !record_dir_.empty();
-  if (screenshot_requests_.empty() && !recording) return;
-  if (!screenshot_requests_.empty() && settle_frames_ > 0) {
-    --settle_frames_;
-    if (!recording) return;
-  }
-  const render::Image img = read_window(*context_);
-  if (!screenshot_requests_.empty() && settle_frames_ <= 0) {
-    for (const std::string& path : screenshot_requests_) {
-      try {
-        const auto parent = std::filesystem::path(path).parent_path();
-        std::error_code ec;
-        if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-        render::write_png(path, img);
-        message_ = "wrote " + path;
-        std::printf("wrote %s\n", path.c_str());
-      } catch (const std::exception& e) {
-        message_ = e.what();
-        if (!opt_.script.empty()) {
-          std::fprintf(stderr, "fluidbed: output failed: %s\n", e.what());
-          exit_status_ = 4;
-          quit_ = true;
-        }
-      }
-    }
-    screenshot_requests_.clear();
-  }
-  if (!recording) return;
-  // Frames at a steady 25 per wall second: repeated when drawing is slower, skipped when faster,
-  // so the video plays at the speed the class saw.
-  const double elapsed = seconds_between(record_t0_, Clock::now());
-  const int due = static_cast<int>(std::floor(elapsed * kRecordFps)) + 1;
-  try {
-    if (video_) {
-      const render::Image f = fit(img, record_frames_w_, record_frames_h_);
-      for (int n = 0; record_frames_ < due && n < 8; ++n, ++record_frames_) video_->write(f);
-      record_frames_ = std::max(record_frames_, due);
-    } else if (record_frames_ < due) {
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%06d.png", record_frames_);
-      render::write_png((std::filesystem::path(record_dir_) / name).string(), img);
-      record_frames_ = due;
-    }
-  } catch (const std::exception& e) {
-    message_ = std::string("recording stopped: ") + e.what();
-    video_.reset();
-    record_dir_.clear();
-  }
-}
-
-void Viewer::start_recording(const std::string& target) {
-  stop_recording();
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const bool mp4 = fs::path(target).extension() == ".mp4";
-  record_frames_ = 0;
-  record_t0_ = Clock::now();
-  record_target_ = target;
-  if (mp4) {
-    if (fs::path(target).has_parent_path())
-      fs::create_directories(fs::path(target).parent_path(), ec);
-    record_frames_w_ = context_->width() & ~1;
-    record_frames_h_ = context_->height() & ~1;
-    video_ = std::make_unique<render::VideoWriter>(target, record_frames_w_, record_frames_h_,
-                                                   kRecordFps);
-  } else {
-    fs::create_directories(target, ec);
-    if (ec) throw InputError("cannot create the recording folder " + target + ": " + ec.message());
-    record_dir_ = target;
-  }
-  message_ = "recording to " + target;
-}
-
-void Viewer::stop_recording() {
-  if (video_) {
-    auto v = std::move(video_);
-    v->close();
-    message_ = "wrote " + record_target_ + " (" + std::to_string(v->frames()) + " frames)";
-    std::printf("%s\n", message_.c_str());
-  } else if (!record_dir_.empty()) {
-    message_ = "wrote " + std::to_string(record_frames_) + " frames to " + record_dir_;
-    std::printf("%s\n", message_.c_str());
-    record_dir_.clear();
-  }
 }
 
 // The script (view/script_runner.hpp): the runner calls the commands below one after the
@@ -464,14 +386,48 @@ void Viewer::unsupported(const ScriptLine& l) {
 }
 
 bool Viewer::velocity(double u) {
+  set_velocity(u);
+  return true;
+}
+
+void Viewer::set_velocity(double u) {
   velocity_ = static_cast<float>(u);
   post({ViewCommand::Kind::velocity, u});
-  return true;
 }
 
 bool Viewer::ideal(bool on) {
   post({ViewCommand::Kind::ideal, on ? 1.0 : 0.0});
   script_waiting_engine_ = true;
+  return true;
+}
+
+bool Viewer::stiffness(double k) {
+  post({ViewCommand::Kind::stiffness, k});
+  script_waiting_engine_ = true;
+  return true;
+}
+
+bool Viewer::settle(double seconds) {
+  settle_edit_ = static_cast<float>(seconds);
+  post({ViewCommand::Kind::settle, seconds});
+  script_waiting_engine_ = true;
+  return true;
+}
+
+bool Viewer::average(double seconds) {
+  average_edit_ = static_cast<float>(seconds);
+  post({ViewCommand::Kind::average, seconds});
+  script_waiting_engine_ = true;
+  return true;
+}
+
+bool Viewer::save_curve(const std::string& file) {
+  save_curve_file(file);
+  return true;
+}
+
+bool Viewer::caption(const std::string& text) {
+  look_.caption = text;
   return true;
 }
 
@@ -540,9 +496,19 @@ bool Viewer::track(long id, int line) {
   return true;
 }
 
+// The close-up when there is one (the whole bed otherwise), about the tracked particle (which it
+// then follows) or the panel's middle.
 bool Viewer::zoom(double factor) {
-  view_.zoom = factor;
-  view_.clamp();
+  if (factor <= 1.0 || layout_.beds.empty()) {
+    look_.zoom = {};
+    return true;
+  }
+  const int bed = layout_.beds.size() > 1 ? 1 : 0;
+  const render::BedView& b = layout_.beds[static_cast<std::size_t>(bed)];
+  const double w = b.inside.width() / b.scale, h = b.inside.height() / b.scale;
+  look_.zoom = look_.zoom.bed == bed ? look_.zoom : render::BedZoom{bed, 1.0, 0.5 * w, 0.5 * h};
+  look_.zoom.factor = factor;
+  follow_tracked();
   return true;
 }
 

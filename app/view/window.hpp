@@ -3,8 +3,13 @@
 // newest snapshot the engine published, draws the bed (renderer) and the panel (ImGui), and sends
 // the panel's edits to the engine as commands. It never waits for the engine, nor the engine for it
 // (a script's `at T` is the one exception: the engine stops at T, the window keeps drawing).
+// window.cpp: the frame, input, zoom and the script; pictures.cpp: screenshots, recordings and
+// saved files; panel.cpp: the panel;
+// panel_plots.cpp: its plots (dp, overlap, the live Fig. 6); overlays.cpp: rings, paths and the
+// bubble under the pointer.
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,21 +22,29 @@
 #include "render/renderer.hpp"
 #include "render/video_writer.hpp"
 #include "view/engine.hpp"
+#include "view/panel_layout.hpp"
 #include "view/script.hpp"
 #include "view/script_runner.hpp"
+
+struct ImFont;
 
 namespace fluidbed::app {
 
 struct ViewerOptions {
-  int width = 1360, height = 800;  // px, the window
+  int width = 1280, height = 720;  // px, the window
   std::string font;                // TrueType file for the renderer and the panel
-  std::string out_dir;             // screenshots and recordings
+  std::string out_dir;             // screenshots, recordings, saved curves
   render::RenderSettings look;
   std::vector<ScriptLine> script;
   // Frames per second the window draws at most (0: as fast as it can). The eye needs no more
   // than about 30; every frame drawn beyond that takes a core from the engine (under Xvfb,
   // llvmpipe drew 80 a second and the engine on two threads ran slower than on one).
   double max_fps = 30.0;
+  // The scene's measured minimum fluidization velocity (m/s; 0: not measured, no presets), and
+  // whether it came from the cache.
+  double umf = 0.0;
+  bool umf_cached = false;
+  double scene_velocity = 0.0;  // m/s, the scene's own (a tick on the slider)
 };
 
 // What the window measured, printed at the end (the viewer's benchmark).
@@ -49,7 +62,7 @@ class Viewer : private ScriptTarget {
  public:
   // Opens the window (throws std::runtime_error when it cannot) and sets up ImGui.
   Viewer(ViewEngine& engine, ViewerOptions options);
-  ~Viewer();
+  ~Viewer() override;
   Viewer(const Viewer&) = delete;
   Viewer& operator=(const Viewer&) = delete;
 
@@ -57,31 +70,65 @@ class Viewer : private ScriptTarget {
   int run();
   const ViewerStats& stats() const { return stats_; }
 
+  // GLFW's key callback (installed before ImGui's, which calls it first): presses are queued, so
+  // that a tap shorter than a frame still acts.
+  void key_event(int key, int action);
+
  private:
   void frame();
   void take_newest();
+  void place_frame();
   void draw_scene();
   void handle_scene_input();
+  void handle_keys();
+  void follow_tracked();
+  // overlays.cpp
   void draw_overlays();
+  void draw_hover_tooltip(const std::optional<std::size_t>& particle, const Bubble* bubble);
+  // panel.cpp, panel_plots.cpp
   void draw_panel();
+  void draw_top_block();
+  void draw_messages();
+  void draw_gas_section();
+  void draw_curve_section();
+  void draw_bed_section();
+  void draw_look_section();
   void draw_plots();
+  void draw_curve_plot(float height);
   void draw_particle_info(std::size_t id, bool tooltip);
+  void note_widget(const char* name, const std::string& value = "");
+  void write_widgets();
+  // window.cpp
   void step_script();
   void capture_if_requested();
   void start_recording(const std::string& target);
   void stop_recording();
+  void save_curve_file(const std::string& path);
+  void write_output(const std::string& path, const std::function<void()>& write);
   void post(const ViewCommand& c);
   void toggle_run();
   void cycle_colour();
+  void set_velocity(double u);
+  bool script_runs_the_bed() const;  // from one `at T` to the next
+  bool bed_is_running() const;       // what Run / Pause shows: stepping, or a script running it
   std::string next_name(const std::string& stem, const std::string& ext);
+  // Frame pixels (the renderer's frame, in the bed area) <-> window pixels.
+  float to_window_x(double fx) const;
+  float to_window_y(double fy) const;
 
   // ScriptTarget: the script's commands.
   void run_to(double t) override;
   bool busy() override;
   bool stopped() const override { return quit_; }
   void unsupported(const ScriptLine& line) override;
+  double umf() const override { return opt_.umf; }
   bool velocity(double m_per_s) override;
   bool ideal(bool on) override;
+  bool stiffness(double k) override;
+  bool settle(double s) override;
+  bool average(double s) override;
+  bool save_curve(const std::string& file) override;
+  bool caption(const std::string& text) override;
   bool run_switch(bool running) override;
   bool step(double count) override;
   bool reset() override;
@@ -103,25 +150,28 @@ class Viewer : private ScriptTarget {
   std::unique_ptr<render::GlContext> context_;
   std::unique_ptr<render::Renderer> renderer_;
   bool imgui_glfw_ = false, imgui_gl_ = false;
+  std::vector<std::pair<float, ImFont*>> fonts_;  // the panel's font at a few pixel sizes
 
   // The newest state and what the panel shows.
   std::shared_ptr<const Snapshot> snap_;
   std::uint64_t snap_seq_ = 0;
   EngineStatus status_;
   render::RenderSettings look_;
-  render::ViewTransform view_;
-  float panel_width_ = 380.0f;
-  render::Rect area_;              // the scene in window pixels
-  int frame_w_ = 0, frame_h_ = 0;  // the drawn frame (px)
-  render::FrameLayout layout_;
-  float velocity_ = 0.0f;  // the slider (m/s)
-  float velocity_top_ = 0.0f;  // its range's top (m/s), fixed at the first frame with gas
-  bool ideal_ = false;
+  PanelLayout panel_;
+  render::Rect area_;              // the bed area in window pixels
+  float fb_scale_ = 1.0f;          // framebuffer pixels per window pixel
+  int frame_w_ = 0, frame_h_ = 0;  // the drawn frame (framebuffer px)
+  render::FrameLayout layout_;     // of the frame, zoom included
+  float velocity_ = 0.0f;          // the slider (m/s)
+  float velocity_top_ = 0.0f;      // its range's top (m/s), fixed when the window opens
+  std::vector<int> keys_;          // presses since the last frame (GLFW key codes)
   std::optional<std::size_t> hovered_;
+  const Bubble* hovered_bubble_ = nullptr;  // into status_.bubbles
   bool mouse_moved_ = false;
   long tracked_ = -1;
   std::vector<std::pair<double, double>> trajectory_;  // m, of the tracked particle
   std::int64_t trajectory_step_ = -1;
+  float settle_edit_ = 0.5f, average_edit_ = 1.0f;  // the panel's fields (s)
 
   // Plots (the last few thousand samples).
   std::uint64_t plot_generation_ = 0;
@@ -148,6 +198,12 @@ class Viewer : private ScriptTarget {
   bool script_wants_running_ = true;
   bool quit_ = false;
   int exit_status_ = 0;
+
+  // Tests drive the window with a pointer: $FLUIDBED_VIEW_WIDGETS names a file where the window
+  // writes where its widgets are (README, "Viewer").
+  std::string widgets_file_;
+  std::vector<std::string> widget_lines_;
+  std::string widgets_written_;
 
   // Measurements.
   std::chrono::steady_clock::time_point t0_, last_status_t_;

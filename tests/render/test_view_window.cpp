@@ -1,8 +1,8 @@
 // The viewer: picking geometry (no GL), `fluidbed view` in scripted mode in a window (under
 // xvfb-run: ctest's ViewWindowUnderXvfb), its headless fallback, and its bad-input errors.
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <stb_image.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -14,40 +14,50 @@
 #include "../view/view_scene.hpp"
 #include "render/picking.hpp"
 #include "render_support.hpp"
+#include "view_support.hpp"
 
 namespace fluidbed::testing {
 namespace {
 
-using render::ViewTransform;
-
 // ---------------------------------------------------------------------------------------------
 // Geometry.
 
-TEST(ViewPicking, ZoomAboutAPointKeepsItUnderTheMouse) {
-  ViewTransform t;
-  const render::Rect area{100, 0, 900, 600};
-  const int fw = 1600, fh = 1200;
-  double fx0 = 0, fy0 = 0;
-  render::window_to_frame(t, area, fw, fh, 300.0, 450.0, fx0, fy0);
-  EXPECT_NEAR(fx0, 400.0, 1e-9);  // (300 - 100) / 800 of 1600
-  EXPECT_NEAR(fy0, 900.0, 1e-9);
-  t.zoom_about(2.0, (300.0 - 100.0) / 800.0, 450.0 / 600.0);
-  EXPECT_DOUBLE_EQ(t.zoom, 2.0);
-  double fx1 = 0, fy1 = 0, wx = 0, wy = 0;
-  render::window_to_frame(t, area, fw, fh, 300.0, 450.0, fx1, fy1);
-  EXPECT_NEAR(fx1, fx0, 1e-9);
-  EXPECT_NEAR(fy1, fy0, 1e-9);
-  render::frame_to_window(t, area, fw, fh, fx1, fy1, wx, wy);
-  EXPECT_NEAR(wx, 300.0, 1e-9);
-  EXPECT_NEAR(wy, 450.0, 1e-9);
-  // The view never leaves the frame.
-  t.pan_by(10.0, -10.0);
-  const render::Rect v = render::visible_rect(t, fw, fh);
-  EXPECT_NEAR(v.x0, 0.0, 1e-3);
-  EXPECT_NEAR(v.y1, 1200.0, 1e-3);
-  EXPECT_NEAR(v.width(), 800.0, 1e-3);
-  t.zoom_about(0.01, 0.5, 0.5);
-  EXPECT_DOUBLE_EQ(t.zoom, 1.0);
+// A zoomed bed panel keeps its place (its clip) and shows the chosen point at its centre; the
+// view never leaves the bed; picking sees through the zoom.
+TEST(ViewPicking, ZoomMagnifiesOnePanelAboutAPoint) {
+  Snapshot s = empty_box(0.1, 0.2);
+  add_particle(s, {0.02, 0.03, 0.002});
+  const render::FrameLayout plain = render::frame_layout(s, 800, 600, 0.4);
+  render::FrameLayout l = plain;
+  render::zoom_bed(l, {1, 2.0, 0.03, 0.04});
+  const render::BedView& z = l.beds[1];
+  EXPECT_TRUE(z.zoomed);
+  EXPECT_FALSE(l.beds[0].zoomed);
+  EXPECT_NEAR(z.scale, 2.0 * plain.beds[1].scale, 1e-9);
+  EXPECT_EQ(z.clip.x0, plain.beds[1].clip.x0);  // the panel stays where it was
+  EXPECT_EQ(z.clip.y1, plain.beds[1].clip.y1);
+  const float cx = 0.5f * (plain.beds[1].inside.x0 + plain.beds[1].inside.x1);
+  const float cy = 0.5f * (plain.beds[1].inside.y0 + plain.beds[1].inside.y1);
+  EXPECT_NEAR(z.px(0.03), cx, 1e-3);
+  EXPECT_NEAR(z.py(0.04), cy, 1e-3);
+  double x = 0, y = 0;
+  ASSERT_TRUE(render::frame_to_world(l, cx, cy, x, y));
+  EXPECT_NEAR(x, 0.03, 1e-6);
+  EXPECT_NEAR(y, 0.04, 1e-6);
+  EXPECT_EQ(render::bed_at(l, cx, cy), 1);
+  // The particle at (0.02, 0.03) is picked where the zoomed panel draws it.
+  EXPECT_EQ(render::pick_particle(s, l, z.px(0.02), z.py(0.03)), std::optional<std::size_t>(0));
+  // About a corner: the view stops at the bed's walls.
+  render::FrameLayout c = plain;
+  render::zoom_bed(c, {1, 4.0, 0.0, 0.0});
+  EXPECT_NEAR(c.beds[1].inside.x0, plain.beds[1].inside.x0, 1e-3);
+  EXPECT_NEAR(c.beds[1].inside.y1, plain.beds[1].inside.y1, 1e-3);
+  // A zoom of 1, or of a panel that is not there, changes nothing.
+  render::FrameLayout same = plain;
+  render::zoom_bed(same, {0, 1.0, 0.05, 0.1});
+  render::zoom_bed(same, {5, 3.0, 0.05, 0.1});
+  EXPECT_EQ(same.beds[0].inside.x0, plain.beds[0].inside.x0);
+  EXPECT_FALSE(same.beds[0].zoomed);
 }
 
 TEST(ViewPicking, FindsTheParticleDrawnUnderAPixel) {
@@ -88,69 +98,6 @@ TEST(ViewPicking, ContactsAreOverlapsAndWalls) {
 
 // ---------------------------------------------------------------------------------------------
 // The program.
-
-struct ViewRun {
-  int status;
-  std::string output;
-};
-
-// Runs `fluidbed view ARGS` with its output in DIR/log.txt (each test has its own folder: ctest
-// runs them side by side).
-ViewRun run_view(const std::filesystem::path& dir, const std::string& args,
-                 const std::string& env = "") {
-  const std::string log = (dir / "log.txt").string();
-  const std::string cmd =
-      env + " " + std::string(FLUIDBED_BINARY) + " view " + args + " > " + log + " 2>&1";
-  const int raw = std::system(cmd.c_str());
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text};
-}
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  // Per process: ctest runs this binary's tests side by side.
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("fluidbed_view_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
-
-std::string write_file(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-  return p.string();
-}
-
-struct Png {
-  int w = 0, h = 0;
-  std::vector<unsigned char> rgb;
-  const unsigned char* at(int x, int y) const {
-    return rgb.data() + 3 * (static_cast<std::size_t>(y) * w + x);
-  }
-};
-
-Png read_png(const std::string& path) {
-  Png p;
-  int n = 0;
-  unsigned char* data = stbi_load(path.c_str(), &p.w, &p.h, &n, 3);
-  if (data) {
-    p.rgb.assign(data, data + static_cast<std::size_t>(p.w) * p.h * 3);
-    stbi_image_free(data);
-  }
-  return p;
-}
-
-// Pixels of [x0, x1) x [y0, y1) for which `pred(r, g, b)` holds.
-template <class P>
-int count_pixels(const Png& p, int x0, int x1, int y0, int y1, P pred) {
-  int n = 0;
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) {
-      const unsigned char* c = p.at(x, y);
-      n += pred(c[0], c[1], c[2]) ? 1 : 0;
-    }
-  return n;
-}
 
 TEST(ViewWindow, ScriptedRunChangesTheGasAndTakesAScreenshot) {
   if (!std::getenv("DISPLAY")) {

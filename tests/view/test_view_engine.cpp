@@ -244,7 +244,8 @@ TEST(ViewEngine, BubbleToggleFillsTheSnapshotsFieldsAndLeavesThePhysics) {
   ASSERT_EQ(snap->void_ny, 60);  // 0.12 m / 2 mm
   ASSERT_EQ(snap->void_fraction.size(), 1200u);
   double solid = 0.0;
-  for (float e : snap->void_fraction) solid += (1.0 - e) * snap->void_dx * snap->void_dy * snap->thickness;
+  for (float e : snap->void_fraction)
+    solid += (1.0 - e) * snap->void_dx * snap->void_dy * snap->thickness;
   double spheres = 0.0;
   for (std::size_t i = 0; i < snap->particles(); ++i)
     spheres += 4.0 / 3.0 * M_PI * std::pow(snap->radius[i], 3);
@@ -356,6 +357,120 @@ TEST(ViewEngine, EngineAndViewerThreadsTogether) {
   EXPECT_EQ(e.status().generation, 1u);
 }
 
+// Waits until `done(status)` holds (the engine running on its own), up to kTimeout.
+template <class F>
+bool wait_for(const ViewEngine& e, F done) {
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!done(e.status())) {
+    if (std::chrono::steady_clock::now() - t0 > kTimeout) return false;
+    std::this_thread::sleep_for(1ms);
+  }
+  return true;
+}
+
+// A failure says what to do in the viewer (not "reduce the time step"), and Reset after it does
+// what Reset does during a run: the bed runs again from the start (the run switch is untouched).
+TEST(ViewEngine, FailureSaysWhatToDoAndResetResumesAsDuringARun) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, ViewEngine::Options{});  // running
+  e.start();
+  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) { return st.steps > 20; }));
+  // Reset during a run: it goes on running.
+  e.post({K::reset, 0.0});
+  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) {
+    return st.generation == 1 && st.steps > 20 && st.stepping;
+  }));
+  // A jet of 2000 m/s: the gas fails on its CFL number at its first step.
+  e.post({K::velocity, 500.0});
+  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) { return !st.error.empty(); }));
+  const app::EngineStatus failed = e.status();
+  EXPECT_FALSE(failed.stepping);
+  EXPECT_TRUE(failed.running);  // the switch as the user left it
+  EXPECT_NE(failed.error.find("Press Reset"), std::string::npos) << failed.error;
+  EXPECT_NE(failed.error.find("keep the gas below 500.00 m/s"), std::string::npos) << failed.error;
+  EXPECT_NE(failed.error.find("CFL"), std::string::npos) << failed.error;
+  EXPECT_EQ(failed.error.find("reduce the time step"), std::string::npos) << failed.error;
+  // Reset after the failure: the same as during a run.
+  e.post({K::reset, 0.0});
+  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) {
+    return st.generation == 2 && st.steps > 20 && st.stepping && st.error.empty();
+  })) << e.status().error;
+  EXPECT_EQ(e.status().superficial_velocity, 2.0);
+}
+
+// Runs shorter than the speed's quarter second (a script's `at T` lines) still give a speed.
+TEST(ViewEngine, ShortRunsAreTimedForTheSpeed) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  EXPECT_EQ(e.status().sim_s_per_wall_s, 0.0);
+  post_and_wait(e, {K::run_until, 0.05});  // tens of milliseconds, not a quarter second
+  EXPECT_GT(e.status().sim_s_per_wall_s, 0.0);
+  EXPECT_GT(e.status().steps_per_s, 0.0);
+}
+
+// The live Fig. 6 through the engine's commands: three held velocities, three points on the
+// increasing branch; a lower one starts the decreasing branch; Reset clears it.
+TEST(ViewEngine, LiveCurveTakesOnePointPerHeldVelocity) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  post_and_wait(e, {K::settle, 0.005});
+  post_and_wait(e, {K::average, 0.01});
+  EXPECT_EQ(e.status().curve.settle, 0.005);
+  EXPECT_EQ(e.status().curve.window, 0.01);
+  post_and_wait(e, {K::run_until, 0.02});  // the scene's 2 m/s
+  for (double u : {2.5, 3.0}) {
+    post_and_wait(e, {K::velocity, u});
+    post_and_wait(e, {K::run_until, e.status().time + 0.02});
+  }
+  app::CurveState c = e.status().curve;
+  ASSERT_EQ(c.branches.size(), 1u);
+  EXPECT_TRUE(c.branches[0].increasing);
+  ASSERT_EQ(c.branches[0].points.size(), 3u);
+  EXPECT_EQ(c.branches[0].points[0].u, 2.0);
+  EXPECT_EQ(c.branches[0].points[2].u, 3.0);
+  EXPECT_EQ(c.branches[0].points[0].samples, 10);  // 10 ms at one sample per ms
+  EXPECT_GT(c.branches[0].points[0].dp_mean, 0.0);
+  EXPECT_GT(c.weight_per_area, 0.0);
+  post_and_wait(e, {K::velocity, 2.2});
+  post_and_wait(e, {K::run_until, e.status().time + 0.02});
+  c = e.status().curve;
+  ASSERT_EQ(c.branches.size(), 2u);
+  EXPECT_FALSE(c.branches[1].increasing);
+  ASSERT_EQ(c.branches[1].points.size(), 2u);  // the turning point and 2.2 m/s
+  EXPECT_EQ(c.branches[1].points[1].u, 2.2);
+  post_and_wait(e, {K::reset, 0.0});
+  c = e.status().curve;
+  ASSERT_EQ(c.branches.size(), 1u);
+  EXPECT_TRUE(c.branches[0].points.empty());
+}
+
+// A stiffness the scene's step can take: the state carries over; one it cannot: refused in one
+// line, the bed as it was.
+TEST(ViewEngine, StiffnessKeepsTheStateAndRefusesAStepTooLong) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  post_and_wait(e, {K::step, 50.0});
+  const std::uint64_t before = e.status().state_hash;
+  post_and_wait(e, {K::stiffness, 800.0});
+  EXPECT_EQ(e.status().stiffness, 800.0);
+  EXPECT_EQ(e.status().state_hash, before);
+  EXPECT_TRUE(e.status().refusal.empty());
+  post_and_wait(e, {K::stiffness, 5e8});
+  EXPECT_NE(e.status().refusal.find("stiffness 5e+08 N/m is refused"), std::string::npos)
+      << e.status().refusal;
+  EXPECT_EQ(e.status().stiffness, 800.0);
+  EXPECT_TRUE(e.status().error.empty());
+  post_and_wait(e, {K::step, 5.0});
+  EXPECT_EQ(e.status().steps, 55);
+  // The damping follows sqrt(kappa): the restitution of the scene.
+  const Settings soft = app::with_contact(s, false, 800.0);
+  EXPECT_NEAR(soft.contact.damping, s.contact.damping * std::sqrt(800.0 / s.contact.stiffness),
+              1e-15);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The view script.
 
@@ -377,7 +492,8 @@ record out/v.mp4
 record stop
 at 0.1 quit
 )",
-                                            "demo.txt");
+                                            "demo.txt")
+                         .lines;
   ASSERT_EQ(lines.size(), 14u);
   EXPECT_EQ(lines[0].at, 0.05);
   EXPECT_EQ(lines[0].kind, app::ScriptLine::Kind::velocity);
@@ -401,12 +517,7 @@ at 0.1 quit
 
 TEST(ViewScript, NamesTheLineAndTheProblem) {
   const auto message = [](const std::string& text) {
-    try {
-      app::parse_view_script(text, "s.txt");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return testing::script_error(app::parse_view_script, text);
   };
   EXPECT_NE(message("run\njump 3\n").find("s.txt line 2: unknown command 'jump'"),
             std::string::npos)
@@ -448,7 +559,8 @@ TEST(ScriptRunner, WaitsForEachAtAndHandsEveryCommandOver) {
     }
   };
   app::ScriptRunner runner(
-      app::parse_view_script("velocity 1\nat 0.5 velocity 2\nzoom 2\nquit\nvelocity 3\n", "t"));
+      app::parse_view_script("velocity 1\nat 0.5 velocity 2\nzoom 2\nquit\nvelocity 3\n", "t")
+          .lines);
   Recorder r;
   runner.advance(r);  // the first line, then the engine must get to 0.5 s
   EXPECT_EQ(r.calls, (std::vector<std::string>{"velocity 1.000000", "run_to 0.500000"}));
@@ -457,8 +569,7 @@ TEST(ScriptRunner, WaitsForEachAtAndHandsEveryCommandOver) {
   r.engine_time = 0.5;
   runner.advance(r);
   EXPECT_EQ(r.calls, (std::vector<std::string>{"velocity 1.000000", "run_to 0.500000",
-                                               "velocity 2.000000", "unsupported line 3",
-                                               "quit"}));
+                                               "velocity 2.000000", "unsupported line 3", "quit"}));
   EXPECT_FALSE(runner.at_end());  // the line after quit is never carried out
 }
 

@@ -1,0 +1,25 @@
+#pragma once
+// `fluidbed view` without a window: the scene run headlessly, its script (or lesson) carried out
+// at its simulated times, pictures of what the window would show at every frame interval: the
+// bed with the caption band, the regime over the bed, and beside it (beds with gas) the live
+// Fig. 6 and dp against time. PNG frames into DIR/frames, and with --video or a lesson an MP4,
+// DIR/video.mp4, at 25 frames per second.
+#include <string>
+
+#include "cli/view.hpp"
+#include "output/frames.hpp"
+#include "scene/settings.hpp"
+#include "view/script.hpp"
+
+namespace fluidbed::app {
+
+struct HeadlessView {
+  FrameOptions frames;  // size, interval, look, font (frames.frames / frames.video: outputs)
+  std::string out;      // the folder
+  double until = -1.0;  // s, --until (< 0: the script's quit, else the scene's end)
+  double umf = 0.0;     // m/s, the scene's measured U_mf (presets); 0: not measured
+};
+
+int view_headless(const Settings& scene, const ViewScript& script, const HeadlessView& o);
+
+}  // namespace fluidbed::app

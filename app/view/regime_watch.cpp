@@ -1,0 +1,68 @@
+#include "view/regime_watch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/steps.hpp"
+#include "run/bubble_recorder.hpp"
+
+namespace fluidbed::app {
+
+const Bubble* BubbleView::region_at(double x, double y) const {
+  if (grid.nx <= 0 || grid.ny <= 0 || !(x >= 0.0) || !(y >= 0.0)) return nullptr;
+  const auto i = static_cast<int>(std::floor(x / grid.dx));
+  const auto j = static_cast<int>(std::floor(y / grid.dy));
+  if (i >= grid.nx || j >= grid.ny) return nullptr;
+  const std::size_t c = static_cast<std::size_t>(grid.index(i, j));
+  if (c >= label.size() || label[c] < 0 || static_cast<std::size_t>(label[c]) >= regions.size())
+    return nullptr;
+  return &regions[static_cast<std::size_t>(label[c])];
+}
+
+std::string regime_words(const BubbleView& v) {
+  std::string w = v.window.regime == Regime::fixed ? "fixed bed" : to_string(v.window.regime);
+  if (v.window_s < 0.5 * RegimeWatch::kWindow) w += "?";  // too few frames to be sure
+  return w;
+}
+
+RegimeWatch::RegimeWatch(const Settings& scene, const Simulation& sim)
+    : settings_(bubble_settings_for(scene)), geometry_(bubble_geometry_for(scene)) {
+  every_ = std::max<std::int64_t>(1, steps_for(settings_.interval, scene.time.dt));
+  analyse(sim);
+}
+
+void RegimeWatch::restart(const Simulation& sim) {
+  analysis_.reset();
+  analyse(sim);
+}
+
+bool RegimeWatch::after_step(const Simulation& sim) {
+  if (sim.steps() % every_ != 0) return false;
+  analyse(sim);
+  return true;
+}
+
+void RegimeWatch::analyse(const Simulation& sim) {
+  const double t = sim.time();
+  if (analysis_ && t - started_ > kRestartAfter) analysis_.reset();
+  if (!analysis_) {
+    analysis_ = std::make_unique<BubbleAnalysis>(settings_, geometry_);
+    started_ = t;
+  }
+  const BubbleFrame& f = analysis_->analyse(t, sim.dem().particles());
+  auto v = std::make_shared<BubbleView>();
+  v->t = t;
+  const double from = std::max(started_, t - kWindow);
+  v->window = analysis_->history().summarize(from, t, settings_, geometry_.gravity);
+  v->window_s = t - from;
+  v->gravity = geometry_.gravity;
+  const VoidFractionField& field = analysis_->void_fraction();
+  v->grid = field.grid;
+  v->label = f.label;
+  v->regions = f.regions;
+  outline_edges(f, field.grid, v->edges);
+  v->void_fraction.assign(field.eps.begin(), field.eps.end());
+  view_ = std::move(v);
+}
+
+}  // namespace fluidbed::app

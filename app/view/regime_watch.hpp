@@ -1,0 +1,64 @@
+#pragma once
+// The viewer's bubble analysis: the state analysed every [bubbles] interval of simulated time (the
+// cadence `run --bubbles` uses, so tracking and the regime rule see the frames they were made
+// for), the regime of the last second in words, the outlines for the picture, and each bubble's
+// cells for the pointer. Runs on the engine thread between steps; readers get an immutable view.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/bubbles.hpp"
+#include "scene/settings.hpp"
+#include "sim/simulation.hpp"
+
+namespace fluidbed::app {
+
+// One analysed frame and the statistics of the trailing window, as the panel and the picture use
+// them (a plain copy, shared read-only).
+struct BubbleView {
+  double t = 0.0;                    // s, the analysed state
+  BubbleStatistics window;           // over the trailing window (up to RegimeWatch::kWindow)
+  double window_s = 0.0;             // s of frames the statistics cover
+  double gravity = 9.81;             // m/s^2, for the 2D rise-velocity reference
+  FineGrid grid;                     // the analysis' fine grid
+  std::vector<int> label;            // per fine cell: an index into regions, or a kCell* value
+  std::vector<Bubble> regions;       // the frame's bubbles and jet cavities
+  std::vector<float> edges;          // their outlines, x0 y0 x1 y1 (m)
+  std::vector<float> void_fraction;  // per fine cell
+
+  // The region under a point (m), if any: a bubble or the jet cavity.
+  const Bubble* region_at(double x, double y) const;
+};
+
+// "fixed bed", "bubbling", "slugging", "spouting"; with "?" while the window is still short.
+std::string regime_words(const BubbleView& v);
+
+class RegimeWatch {
+ public:
+  static constexpr double kWindow = 1.0;  // s: the regime of the last second, as run's timeseries
+  // The analysis keeps a record per frame and per bubble; after this much simulated time it
+  // starts again (a few tens of MB at most; the regime is unsure for a second then).
+  static constexpr double kRestartAfter = 600.0;  // s
+
+  // Analyses the starting state `sim` is in.
+  RegimeWatch(const Settings& scene, const Simulation& sim);
+  // After every step: analyses the state when a frame is due; true when it did.
+  bool after_step(const Simulation& sim);
+  // The bed was reset: tracking starts again from this state (a frame, as `run --bubbles`
+  // analyses the start).
+  void restart(const Simulation& sim);
+  std::shared_ptr<const BubbleView> view() const { return view_; }
+
+ private:
+  void analyse(const Simulation& sim);
+
+  BubbleSettings settings_;
+  BedGeometry geometry_;
+  std::int64_t every_ = 1;  // steps between frames
+  std::unique_ptr<BubbleAnalysis> analysis_;
+  double started_ = 0.0;  // s, the analysis' first frame
+  std::shared_ptr<const BubbleView> view_;
+};
+
+}  // namespace fluidbed::app
