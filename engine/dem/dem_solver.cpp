@@ -1,6 +1,7 @@
 #include "dem/dem_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -64,6 +65,7 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   parallel_ = threads_ > 1 && n >= 256;
   partial_.assign(static_cast<std::size_t>(threads_), StepPartial{});
   passed_.assign(static_cast<std::size_t>(threads_), {});
+  busy_.assign(static_cast<std::size_t>(threads_), ThreadClock{});
   block_ke_.assign(particle_blocks(n), 0.0);
   block_ledger_.assign(particle_blocks(n), EnergyLedger{});
   double dmax = 0.0;
@@ -354,10 +356,14 @@ void DemSolver::thread_range(int t, int T, std::size_t& b, std::size_t& e) const
 }
 
 void DemSolver::balance(int T) {
-  // Whole blocks per thread, cut where the work is halved (thirded, ...): a candidate pair
-  // costs about one unit, a particle's own work (integration, gathering, walls) about three
-  // (measured on the packing's split). A bed is denser at the bottom, so equal particle counts
-  // would leave the thread with the upper half waiting for the other.
+  // Whole blocks per thread, cut where each thread's share of the work matches its speed: a
+  // candidate pair costs about one unit, a particle's own work (integration, gathering, walls)
+  // about three (measured on the packing's split). A bed is denser at the bottom, so equal
+  // particle counts would leave the thread with the upper half waiting for the other; and two
+  // cores need not be equally fast (on a virtual machine one may share its core with another
+  // guest: measured 1.6 times slower on a streaming loop), so each thread's speed is measured -
+  // its work units over the time it spent on its own particles since the last balance - and
+  // smoothed. The split changes the speed only: every result is the same bits for any split.
   constexpr double kParticleWork = 3.0;
   const std::size_t n = state_.particles.size();
   const std::size_t blocks = particle_blocks(n);
@@ -366,15 +372,35 @@ void DemSolver::balance(int T) {
   auto work_to = [&](std::size_t p) {  // work of particles [0, p)
     return kParticleWork * static_cast<double>(p) + (have_list ? static_cast<double>(fb[p]) : 0.0);
   };
+  const auto nT = static_cast<std::size_t>(T);
+  if (speed_.size() != nT) {
+    speed_.assign(nT, 1.0);
+    work_.assign(nT, 0.0);
+  } else if (steps_since_balance_ > 0) {
+    for (std::size_t t = 0; t < nT; ++t) {
+      const double busy = busy_[t].seconds;
+      if (busy > 0.0 && work_[t] > 0.0)
+        speed_[t] = 0.5 * speed_[t] + 0.5 * work_[t] * static_cast<double>(steps_since_balance_) / busy;
+    }
+  }
+  double speed_sum = 0.0;
+  for (double v : speed_) speed_sum += v;
   const double total = work_to(n);
-  split_.assign(static_cast<std::size_t>(T) + 1, n);
+  split_.assign(nT + 1, n);
   split_[0] = 0;
   std::size_t blk = 0;
-  for (int t = 1; t < T; ++t) {
-    const double target = total * t / T;
+  double ahead = 0.0;  // speed of the threads before t
+  for (std::size_t t = 1; t < nT; ++t) {
+    ahead += speed_[t - 1];
+    const double target = total * ahead / speed_sum;
     while (blk < blocks && work_to(std::min(n, (blk + 1) * kParticleBlock)) <= target) ++blk;
     split_[t] = std::max(split_[t - 1], std::min(n, blk * kParticleBlock));
   }
+  for (std::size_t t = 0; t < nT; ++t) {
+    work_[t] = work_to(split_[t + 1]) - work_to(split_[t]);
+    busy_[t].seconds = 0.0;
+  }
+  steps_since_balance_ = 0;
 }
 
 template <bool Incremental>
@@ -397,8 +423,15 @@ void DemSolver::step_particles(const RangeWork& after) {
       times_.add(phase, now - last);
       last = now;
     };
+    // Each thread's time on its own particles, for balance().
+    double& busy = busy_[static_cast<std::size_t>(t)].seconds;
+    auto since = [](PhaseTimes::Clock::time_point from) {
+      return std::chrono::duration<double>(PhaseTimes::Clock::now() - from).count();
+    };
+    auto start = PhaseTimes::Clock::now();
     before_forces(b, e);
     list_.displacement(state_.particles, b, e, partial_[t].moved2);
+    busy += since(start);
     lap(Phase::Integration);
 #pragma omp barrier
     // Every thread reads the same partial results in the same order: the same decision.
@@ -417,15 +450,20 @@ void DemSolver::step_particles(const RangeWork& after) {
     for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk)
       block_ledger_[blk] = EnergyLedger{};
     partial_[t].k0 = list_.slots().first_begin[b];
+    start = PhaseTimes::Clock::now();
     pair_pass<Incremental>(t, e, h, partial_[t]);
+    busy += since(start);
 #pragma omp barrier
+    start = PhaseTimes::Clock::now();
     partial_[t].outside = particle_pass<Incremental>(t, b, e, h, partial_[t]);
+    busy += since(start);
     lap(Phase::Contacts);
     if (after) {
       after(b, e);
       lap(Phase::Coupling);
     }
   }
+  ++steps_since_balance_;
   StepPartial sum;
   for (const auto& a : partial_) {
     sum.outside = sum.outside || a.outside;

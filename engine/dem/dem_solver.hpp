@@ -185,6 +185,15 @@ class DemSolver {
     std::int32_t j;
   };
   std::vector<std::vector<Push>> passed_;  // per thread: its contacts with j beyond its range
+  // balance(): per thread, the time spent on its own particles since the last balance (padded:
+  // each thread writes its own), its measured speed (work units per second, smoothed) and the
+  // work of its range.
+  struct alignas(64) ThreadClock {
+    double seconds = 0.0;
+  };
+  std::vector<ThreadClock> busy_;
+  std::vector<double> speed_, work_;
+  std::int64_t steps_since_balance_ = 0;
   std::vector<double> block_ke_;      // J, per block of particles (core/threads.hpp)
   // The step's energy ledger per block of particles (a pair counts in its first particle's
   // block), summed in block order: the same bits for any thread count.
