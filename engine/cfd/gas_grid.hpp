@@ -19,8 +19,12 @@ struct GasGrid {
   int cells() const { return nx * ny; }
   int index(int i, int j) const { return j * nx + i; }
   // Column and row of the cell holding (x, y); points outside are clamped to the edge cells.
-  int column(double x) const { return static_cast<int>(std::clamp(x / dx(), 0.0, nx - 1.0)); }
-  int row(double y) const { return static_cast<int>(std::clamp(y / dy(), 0.0, ny - 1.0)); }
+  int column(double x) const { return along(x, dx(), nx); }
+  int row(double y) const { return along(y, dy(), ny); }
+  // The cell of coordinate x along a side of n cells of size d (loops hoist d = dx() or dy()).
+  static int along(double x, double d, int n) {
+    return static_cast<int>(std::clamp(x / d, 0.0, n - 1.0));
+  }
   int cell_of(double x, double y) const { return index(column(x), row(y)); }
 };
 

@@ -25,6 +25,7 @@ Coupler::Coupler(const GasGrid& grid, const CouplerParams& c, std::size_t partic
   threads_ = resolve_threads(c.threads);
   parallel_ = threads_ > 1 && particles >= 256;
   sums_.configure(grid.cells(), threads_);
+  geometry_.resize(static_cast<std::size_t>(threads_));
   drag_sums_.configure(grid.cells(), threads_);
   for (auto* v : {&s_.gas_ux, &s_.gas_uy, &s_.beta, &s_.base_fx, &s_.base_fy, &s_.drag_x,
                   &s_.drag_y, &s_.sum_x, &s_.sum_y, &slip_x_, &slip_y_, &slip_, &eps_at_,
@@ -59,12 +60,15 @@ const std::vector<double>& Coupler::compute_porosity(const Particles& p, double 
 // Each sphere's shares (the closed forms are the work) summed per cell block by block, so the
 // porosity is the same bits for any thread count.
 void Coupler::porosity_range(const Particles& p, int t, std::size_t b, std::size_t e) {
+  ShareGeometry& geo = geometry_[static_cast<std::size_t>(t)];
+  geo.resize(e - b);
+  share_geometry(grid_, e - b, p.x.data() + b, p.y.data() + b, p.radius.data() + b, geo);
   for (std::size_t q = b; q < e; q += kParticleBlock) {
     sums_.begin_block(t);
     const std::size_t q1 = std::min(e, q + kParticleBlock);
     for (std::size_t i = q; i < q1; ++i) {
       VolumeShares sh;
-      particle_volume_shares(grid_, p.x[i], p.y[i], p.radius[i], sh);
+      shares_from_geometry(grid_, geo, i - b, p.radius[i], sh);
       for (int c = 0; c < sh.count; ++c) sums_.add(t, sh.cell[c], sh.volume[c], 0.0);
     }
   }
@@ -119,8 +123,10 @@ void Coupler::freeze_range(Particles& p, std::size_t begin, std::size_t end) {
   constexpr double kPi = std::numbers::pi;
   // Three passes over the range: the gas at each particle (gathers from the cells), the drag
   // coefficient (pure arithmetic over arrays: vectorised), the forces.
+  const double dx = grid_.dx(), dy = grid_.dy();
+  const int nx = grid_.nx, ny = grid_.ny;
   for (std::size_t i = begin; i < end; ++i) {
-    const int c = grid_.cell_of(p.x[i], p.y[i]);
+    const int c = GasGrid::along(p.y[i], dy, ny) * nx + GasGrid::along(p.x[i], dx, nx);
     s_.cell[i] = c;
     s_.gas_ux[i] = cell_ux_[c];
     s_.gas_uy[i] = cell_uy_[c];

@@ -111,6 +111,7 @@ class Coupler {
                                 double& total_y);
 
   BlockCellSums sums_;       // per-cell sums over particles, block by block: solid volume
+  std::vector<ShareGeometry> geometry_;  // per thread: scratch of the porosity
   BlockCellSums drag_sums_;  // idem: drag
   std::vector<double> cell_ux_, cell_uy_, cell_gx_, cell_gy_, ln_eps_;  // per cell
   std::vector<double> solid_;

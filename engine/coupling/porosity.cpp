@@ -123,6 +123,94 @@ int particle_volume_shares(const GasGrid& g, double x, double y, double R, Volum
   return out.count = 4;
 }
 
+void ShareGeometry::resize(std::size_t n) {
+  for (auto* v : {&cell, &step_x, &step_y}) v->resize(n);
+  for (auto* v : {&a_x, &a_y, &cap_x, &cap_y}) v->resize(n);
+}
+
+namespace {
+
+// sphere_cap_volume without branches (the same arithmetic; a cap of no line crossed is 0).
+inline double cap_volume_select(double R, double a, bool crossed) {
+  const double h = R - a;
+  const double inside = kPi / 3.0 * h * h * (2.0 * R + a);
+  const double v = a >= R ? 0.0 : (a <= -R ? sphere_volume(R) : inside);
+  return crossed ? v : 0.0;
+}
+
+}  // namespace
+
+__attribute__((target_clones("avx2", "default"))) void share_geometry(
+    const GasGrid& g, std::size_t n, const double* x, const double* y, const double* R,
+    ShareGeometry& out) {
+  const double dx = g.dx(), dy = g.dy();
+  const int nx = g.nx, ny = g.ny;
+  int* cell = out.cell.data();
+  int* sx = out.step_x.data();
+  int* sy = out.step_y.data();
+  double* ax = out.a_x.data();
+  double* ay = out.a_y.data();
+  double* cx = out.cap_x.data();
+  double* cy = out.cap_y.data();
+#pragma omp simd
+  for (std::size_t k = 0; k < n; ++k) {
+    const double r = R[k];
+    const int i = GasGrid::along(x[k], dx, nx), j = GasGrid::along(y[k], dy, ny);
+    cell[k] = j * nx + i;
+    const double left = x[k] - i * dx, right = (i + 1) * dx - x[k];
+    const bool to_left = (left < r) & (i > 0);
+    const bool to_right = !to_left & (right < r) & (i + 1 < nx);
+    sx[k] = to_left ? -1 : (to_right ? 1 : 0);
+    const double a = to_left ? left : (to_right ? right : 0.0);
+    ax[k] = a;
+    cx[k] = cap_volume_select(r, a, to_left | to_right);
+    const double below = y[k] - j * dy, above = (j + 1) * dy - y[k];
+    const bool down = (below < r) & (j > 0);
+    const bool up = !down & (above < r) & (j + 1 < ny);
+    sy[k] = down ? -1 : (up ? 1 : 0);
+    const double b = down ? below : (up ? above : 0.0);
+    ay[k] = b;
+    cy[k] = cap_volume_select(r, b, down | up);
+  }
+}
+
+int shares_from_geometry(const GasGrid& g, const ShareGeometry& geo, std::size_t k, double R,
+                         VolumeShares& out) {
+  const int c = geo.cell[k], di = geo.step_x[k], dj = geo.step_y[k];
+  const double volume = sphere_volume(R);
+  if (di == 0 && dj == 0) {
+    out.cell[0] = c;
+    out.volume[0] = volume;
+    return out.count = 1;
+  }
+  const int cx = c + di, cy = c + dj * g.nx;
+  const double vx = geo.cap_x[k], vy = geo.cap_y[k];
+  if (dj == 0) {
+    out.cell[0] = cx;
+    out.volume[0] = vx;
+    out.cell[1] = c;
+    out.volume[1] = volume - vx;
+    return out.count = 2;
+  }
+  if (di == 0) {
+    out.cell[0] = cy;
+    out.volume[0] = vy;
+    out.cell[1] = c;
+    out.volume[1] = volume - vy;
+    return out.count = 2;
+  }
+  const double vxy = sphere_quadrant_volume(R, geo.a_x[k], geo.a_y[k]);
+  out.cell[0] = cx + dj * g.nx;
+  out.volume[0] = vxy;
+  out.cell[1] = cx;
+  out.volume[1] = vx - vxy;
+  out.cell[2] = cy;
+  out.volume[2] = vy - vxy;
+  out.cell[3] = c;
+  out.volume[3] = volume - vx - vy + vxy;
+  return out.count = 4;
+}
+
 void add_particle_volume(const GasGrid& g, double x, double y, double R,
                          std::vector<double>& solid_volume) {
   VolumeShares shares;

@@ -42,6 +42,22 @@ struct VolumeShares {
 // Fills `out` with the sphere's shares (the split add_particle_volume uses); returns the count.
 int particle_volume_shares(const GasGrid& g, double x, double y, double R, VolumeShares& out);
 
+// The same for spheres [0, n) at once, in two passes: share_geometry finds each sphere's cell,
+// the lines it crosses and the caps beyond them (branch-free arithmetic over arrays, which
+// vectorises), shares_from_geometry splits the volume (the double cap of a corner, about one
+// sphere in twelve in the paper's bed, only there). The results are particle_volume_shares'
+// to the bit.
+struct ShareGeometry {
+  std::vector<int> cell, step_x, step_y;  // step: -1, 0 (no line crossed) or 1 cell
+  std::vector<double> a_x, a_y;           // m, distance from the centre to the line crossed
+  std::vector<double> cap_x, cap_y;       // m^3, the sphere's part beyond it
+  void resize(std::size_t n);
+};
+void share_geometry(const GasGrid& g, std::size_t n, const double* x, const double* y,
+                    const double* R, ShareGeometry& out);
+int shares_from_geometry(const GasGrid& g, const ShareGeometry& geo, std::size_t i, double R,
+                         VolumeShares& out);
+
 // Adds the volume of the sphere (radius R, centre (x, y)) to each cell it touches: 1, 2 or 4
 // cells, split by the nearer vertical and horizontal line of the cell holding the centre
 // (precondition: sphere_fits_cells). A line that is an outer wall does not split: a part of the
