@@ -79,6 +79,27 @@ TEST(Scene, RefusesImpossibleValues) {
             std::string::npos);
 }
 
+// A size that would exhaust the machine is refused before anything is allocated, naming the key
+// that makes it large, and quickly (the values of the issue that grew to 16.8 GB or never ended).
+TEST(Scene, RefusesSizesThatWouldExhaustTheMemory) {
+  const std::string tall = error_of("", {"domain.height=100000"});  // 9e8 lattice sites
+  EXPECT_NE(tall.find("domain.height"), std::string::npos) << tall;
+  EXPECT_NE(tall.find("GB of memory"), std::string::npos) << tall;
+  EXPECT_NE(error_of("", {"domain.height=1e300"}).find("domain.height"), std::string::npos);
+  EXPECT_NE(error_of("", {"particles.count=2000000000"}).find("particles.count"), std::string::npos);
+  EXPECT_NE(error_of("", {"gas.cells_x=100000", "gas.cells_y=100000", "particles.diameter=1e-6",
+                          "particles.count=10"})
+                .find("gas.cells_x times gas.cells_y"),
+            std::string::npos);
+  // A single sphere needs no lattice, but a domain 10^300 m high still cannot be gridded.
+  EXPECT_NE(error_of("[particles]\nplacement = \"single\"\ncount = 1\nx = 0.05\ny = 0.05\n",
+                     {"domain.height=1e300"})
+                .find("10^8 particles.diameter high"),
+            std::string::npos);
+  // A bed 100 m high is large but affordable: it is not refused.
+  EXPECT_EQ(error_of("", {"domain.height=100"}), "");
+}
+
 TEST(Scene, ResolvedSceneReadsBackIdentically) {
   const Settings s = parse_scene("[particles]\ncount = 100\nseed = 42\n", "t.toml",
                                  {"scene.name=roundtrip", "contact.stiffness=800"});
