@@ -3,7 +3,6 @@
 // fields against each other and the geometry.
 #include <unistd.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -70,43 +69,31 @@ std::string gigabytes(double bytes) {
 }
 
 // What a scene's size would cost before anything is allocated, in doubles so that no count
-// overflows: a value that would exhaust the machine (a domain 100 km high to be filled with a
-// lattice, 10^9 particles or gas cells) is refused here with the key that makes it large, instead
-// of growing until the machine swaps. The figures per item are upper bounds of what
-// `/usr/bin/time -v` measured on the packing scene: about 0.7 kB per particle, 28 bytes per
-// lattice site (the placement shuffles every site), 0.9 kB per gas cell, 60 MB at start.
+// overflows: a value that would exhaust the machine (10^9 particles or gas cells) is refused here
+// with the key that makes it large, instead of growing until the machine swaps. The figures per
+// item are upper bounds of what `/usr/bin/time -v` measured on the packing scene: about 0.7 kB
+// per particle, 0.9 kB per gas cell, 60 MB at start. The domain's size costs nothing by itself
+// (the placement draws its sites from the lattice's shape, scene/lattice.hpp, and the neighbour
+// grid has about two cells per particle), but its rows and columns are counted in integers.
 void refuse_unaffordable(const Settings& s) {
   const auto& d = s.domain;
   const auto& p = s.particles;
-  const double top = p.fill_height > 0.0 ? p.fill_height : d.height;
-  const bool lattice = p.placement == Placement::Lattice || p.placement == Placement::Packed;
-  const double sites =
-      lattice ? std::floor(d.width / p.diameter + 1.0) * std::floor(top / p.diameter + 1.0) : 0.0;
-  const double gas_cells =
-      s.gas.enabled ? static_cast<double>(s.gas.cells_x) * static_cast<double>(s.gas.cells_y) : 0.0;
-  struct Part {
-    const char* key;
-    double bytes;
-    std::string what;
-  };
-  const Part parts[] = {
-      {"particles.count", 1024.0 * p.count, std::to_string(p.count) + " particles"},
-      {top == d.height ? "domain.height" : "particles.fill_height", 32.0 * sites,
-       gigabytes(32.0 * sites) + " for the placement's lattice of the domain"},
-      {"gas.cells_x times gas.cells_y", 1024.0 * gas_cells, gigabytes(1024.0 * gas_cells) + " for the gas cells"}};
-  const double total = 60e6 + parts[0].bytes + parts[1].bytes + parts[2].bytes;
-  const double available = available_memory_bytes();
-  if (!(total <= available)) {
-    const Part& big = *std::max_element(std::begin(parts), std::end(parts),
-                                        [](const Part& a, const Part& b) { return a.bytes < b.bytes; });
-    refuse(big.key, "makes the run need about " + gigabytes(total) + " of memory (" + big.what +
-                        "), more than the " + gigabytes(available) + " this machine has free");
-  }
-  // The neighbour search's cell grid counts its rows and columns in int: a domain more than
-  // 10^8 particle diameters across is beyond what it (or any bed) needs.
   const double span = 1e8 * p.diameter;
   if (!(d.height <= span)) refuse("domain.height", "is more than 10^8 particles.diameter high");
   if (!(d.width <= span)) refuse("domain.width", "is more than 10^8 particles.diameter wide");
+  const double particles = 1024.0 * p.count;
+  const double gas =
+      s.gas.enabled ? 1024.0 * static_cast<double>(s.gas.cells_x) * static_cast<double>(s.gas.cells_y)
+                    : 0.0;
+  const double total = 60e6 + particles + gas;
+  const double available = available_memory_bytes();
+  if (!(total <= available)) {
+    const bool gas_larger = gas > particles;
+    refuse(gas_larger ? "gas.cells_x times gas.cells_y" : "particles.count",
+           "makes the run need about " + gigabytes(total) + " of memory (" +
+               (gas_larger ? gigabytes(gas) + " for the gas cells" : gigabytes(particles) + " for the particles") +
+               "), more than the " + gigabytes(available) + " this machine has free");
+  }
 }
 
 }  // namespace
@@ -128,7 +115,7 @@ void validate(const Settings& s) {
   refuse_unaffordable(s);
   if (p.placement == Placement::Lattice || p.placement == Placement::Packed) {
     const double top = p.fill_height > 0.0 ? p.fill_height : d.height;
-    const auto cells = lattice_sites(d.width, top, p.diameter).size();
+    const auto cells = LatticeShape(d.width, top, p.diameter).size();
     if (static_cast<std::size_t>(p.count) > cells)
       refuse("particles.count", "is " + std::to_string(p.count) + " but only " +
                                     std::to_string(cells) + " particles fit in the domain");

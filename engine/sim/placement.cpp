@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <numeric>
+#include <unordered_map>
 #include <utility>
 
 #include "core/errors.hpp"
@@ -32,16 +32,24 @@ Particles place_particles(const Settings& s) {
     p.w[0] = ps.spin;
   } else if (ps.placement == Placement::Lattice) {
     const double top = ps.fill_height > 0.0 ? ps.fill_height : s.domain.height;
-    const auto sites = lattice_sites(s.domain.width, top, ps.diameter);
-    if (sites.size() < n)
-      throw InputError("particles.count: only " + std::to_string(sites.size()) + " fit");
+    const LatticeShape lattice(s.domain.width, top, ps.diameter);
+    const std::size_t cells = lattice.size();
+    if (cells < n) throw InputError("particles.count: only " + std::to_string(cells) + " fit");
     // Partial Fisher-Yates: the first n of a seeded shuffle of the cells choose which are filled.
-    std::vector<std::size_t> order(sites.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
+    // Only the entries the shuffle moved are stored (the others hold their own number), so a tall
+    // domain with few particles costs n entries, not one per cell.
+    std::unordered_map<std::size_t, std::size_t> moved;
+    auto at = [&](std::size_t k) {
+      const auto it = moved.find(k);
+      return it == moved.end() ? k : it->second;
+    };
+    std::vector<std::size_t> order(n);
     SplitMix64 rng(ps.seed);
     for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t k = i + rng.below(order.size() - i);
-      std::swap(order[i], order[k]);
+      const std::size_t k = i + rng.below(cells - i);
+      const std::size_t chosen = at(k);
+      moved[k] = at(i);
+      order[i] = chosen;
     }
     // The particles are then numbered strip by strip (vertical strips 40 diameters wide, the
     // paper's bed is one), along the rows inside a strip, bottom to top: a particle's neighbours
@@ -49,13 +57,14 @@ Particles place_particles(const Settings& s) {
     // arrays are read in cache order and each thread's block of particles is a compact region.
     const double strip = 40.0 * ps.diameter;
     auto key = [&](std::size_t site) {
-      return std::pair{static_cast<long>(sites[site].x / strip), site};
+      return std::pair{static_cast<long>(lattice.site(site).x / strip), site};
     };
-    std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n),
+    std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
     for (std::size_t i = 0; i < n; ++i) {
-      p.x[i] = sites[order[i]].x;
-      p.y[i] = sites[order[i]].y;
+      const LatticeSite site = lattice.site(order[i]);
+      p.x[i] = site.x;
+      p.y[i] = site.y;
     }
   } else {
     throw InputError("particles.placement \"" + option_string(ps.placement) + "\" does not place particles");

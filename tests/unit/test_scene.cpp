@@ -2,9 +2,11 @@
 // its key.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 
 #include "core/errors.hpp"
+#include "scene/lattice.hpp"
 #include "scene/scene_loader.hpp"
 
 using namespace fluidbed;
@@ -80,24 +82,37 @@ TEST(Scene, RefusesImpossibleValues) {
 }
 
 // A size that would exhaust the machine is refused before anything is allocated, naming the key
-// that makes it large, and quickly (the values of the issue that grew to 16.8 GB or never ended).
+// that makes it large, and quickly; a domain only tall is not (it costs nothing until filled).
 TEST(Scene, RefusesSizesThatWouldExhaustTheMemory) {
-  const std::string tall = error_of("", {"domain.height=100000"});  // 9e8 lattice sites
-  EXPECT_NE(tall.find("domain.height"), std::string::npos) << tall;
-  EXPECT_NE(tall.find("GB of memory"), std::string::npos) << tall;
-  EXPECT_NE(error_of("", {"domain.height=1e300"}).find("domain.height"), std::string::npos);
   EXPECT_NE(error_of("", {"particles.count=2000000000"}).find("particles.count"), std::string::npos);
-  EXPECT_NE(error_of("", {"gas.cells_x=100000", "gas.cells_y=100000", "particles.diameter=1e-6",
-                          "particles.count=10"})
-                .find("gas.cells_x times gas.cells_y"),
+  const std::string gas = error_of("", {"gas.cells_x=100000", "gas.cells_y=100000",
+                                        "particles.diameter=1e-6", "particles.count=10"});
+  EXPECT_NE(gas.find("gas.cells_x times gas.cells_y"), std::string::npos) << gas;
+  EXPECT_NE(gas.find("GB of memory"), std::string::npos) << gas;
+  // Rows and columns are counted in integers: 10^300 m is refused, 100 km is not.
+  EXPECT_NE(error_of("", {"domain.height=1e300"}).find("10^8 particles.diameter high"),
             std::string::npos);
-  // A single sphere needs no lattice, but a domain 10^300 m high still cannot be gridded.
-  EXPECT_NE(error_of("[particles]\nplacement = \"single\"\ncount = 1\nx = 0.05\ny = 0.05\n",
-                     {"domain.height=1e300"})
-                .find("10^8 particles.diameter high"),
+  EXPECT_NE(error_of("", {"domain.width=1e300"}).find("10^8 particles.diameter wide"),
             std::string::npos);
-  // A bed 100 m high is large but affordable: it is not refused.
-  EXPECT_EQ(error_of("", {"domain.height=100"}), "");
+  EXPECT_EQ(error_of("", {"domain.height=100000"}), "");
+}
+
+// The lattice's shape gives the same sites, in the same order, as listing them one by one.
+TEST(Scene, LatticeShapeNumbersTheSitesAsTheListDoes) {
+  for (const auto& [w, top, d] : {std::array<double, 3>{0.15, 0.9, 0.004},
+                                  std::array<double, 3>{0.15, 0.3, 0.004},
+                                  std::array<double, 3>{0.006, 0.05, 0.004},
+                                  std::array<double, 3>{0.0042, 0.0041, 0.004},
+                                  std::array<double, 3>{0.1003, 0.2, 0.0035},
+                                  std::array<double, 3>{0.002, 0.9, 0.004}}) {
+    const auto sites = lattice_sites(w, top, d);
+    const LatticeShape shape(w, top, d);
+    ASSERT_EQ(shape.size(), sites.size()) << w << " x " << top << ", d " << d;
+    for (std::size_t k = 0; k < sites.size(); ++k) {
+      EXPECT_EQ(shape.site(k).x, sites[k].x) << k;
+      EXPECT_EQ(shape.site(k).y, sites[k].y) << k;
+    }
+  }
 }
 
 TEST(Scene, ResolvedSceneReadsBackIdentically) {
