@@ -53,7 +53,8 @@ std::string first_difference(const std::string& now, const std::string& was) {
   std::istringstream a(now), b(was);
   std::string la, lb, section;
   while (true) {
-    const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
+    const bool ga = static_cast<bool>(std::getline(a, la)),
+               gb = static_cast<bool>(std::getline(b, lb));
     if (!ga && !gb) return "";
     if (!ga) la.clear();
     if (!gb) lb.clear();
@@ -83,16 +84,19 @@ RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
   const std::string head = "cannot resume " + a.resume + ": ";
   if (a.output.frames || a.output.video || a.output.vtk || !a.output.montage.empty() || a.plots ||
       a.bubbles)
-    throw InputError(head + "--frames, --video, --vtk, --montage, --plots and --bubbles runs have no "
-                            "checkpoint, and a resumed run cannot add them");
+    throw InputError(head +
+                     "--frames, --video, --vtk, --montage, --plots and --bubbles runs have no "
+                     "checkpoint, and a resumed run cannot add them");
   if (!a.out.empty() && std::filesystem::absolute(a.out).lexically_normal() !=
                             std::filesystem::absolute(a.resume).lexically_normal())
-    throw InputError(head + "--out " + a.out + " is not the run's folder (a resumed run finishes in DIR)");
+    throw InputError(head + "--out " + a.out +
+                     " is not the run's folder (a resumed run finishes in DIR)");
   RunArgs r = a;
   r.out = a.resume;
   try {
     const nlohmann::json& o = c.options;
-    if (o.at("format").get<int>() != 1) throw InputError(head + "the checkpoint is of another format");
+    if (o.at("format").get<int>() != 1)
+      throw InputError(head + "the checkpoint is of another format");
     if (r.scene.empty()) r.scene = o.at("scene").get<std::string>();
     if (r.overrides.empty()) r.overrides = o.at("overrides").get<std::vector<std::string>>();
     const double until = o.at("until_s").get<double>();
@@ -126,7 +130,8 @@ int run_command(const RunArgs& given) {
   s.threads = a.threads;
   const std::string scene_toml = to_toml(s);
   if (checkpoint && scene_toml != checkpoint->scene_toml)
-    throw InputError("cannot resume " + given.resume + ": the scene is not the one the run started with (" +
+    throw InputError("cannot resume " + given.resume +
+                     ": the scene is not the one the run started with (" +
                      first_difference(scene_toml, checkpoint->scene_toml) + ")");
   const std::string out = a.out.empty() ? default_out(a.scene) : a.out;
   prepare_packed_bed(s);
@@ -196,7 +201,8 @@ int run_command(const RunArgs& given) {
     throw;
   }
   if (!r.completed) {
-    const std::string why = std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
+    const std::string why =
+        std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
     live.interrupted(sim.time(), why);
     if (checkpoints)
       std::fprintf(stderr, "interrupted at t = %.6g s; resume with: fluidbed run --resume %s\n", sim.time(),

@@ -23,7 +23,9 @@ namespace {
 constexpr char kRunTag[8] = {'F', 'L', 'B', 'R', 'U', 'N', '0', '1'};
 static_assert(std::is_trivially_copyable_v<CouplingDiagnostics>);
 
-fs::path folder_of(const std::string& run_dir) { return fs::path(run_dir) / "checkpoint"; }
+fs::path folder_of(const std::string& run_dir) {
+  return fs::path(run_dir) / "checkpoint";
+}
 
 // A checkpoint replaced by a newer one is renamed aside before the new one takes its name: a
 // process killed between the two renames leaves only that one.
@@ -52,7 +54,8 @@ struct RunHeader {
 RunHeader read_header(BinarySource& src) {
   char tag[sizeof kRunTag];
   src.stream().read(tag, sizeof tag);
-  if (!src.stream() || std::memcmp(tag, kRunTag, sizeof tag) != 0) src.fail("not a run checkpoint's");
+  if (!src.stream() || std::memcmp(tag, kRunTag, sizeof tag) != 0)
+    src.fail("not a run checkpoint's");
   RunHeader h;
   h.wall = src.get<double>();
   h.hash = src.get<std::uint64_t>();
@@ -63,9 +66,9 @@ RunHeader read_header(BinarySource& src) {
 
 }  // namespace
 
-void write_checkpoint(const std::string& run_dir, const Simulation& sim, const RunRecorder& recorder,
-                      double wall, const std::string& scene_toml, const nlohmann::json& options,
-                      bool bubbles) {
+void write_checkpoint(const std::string& run_dir, const Simulation& sim,
+                      const RunRecorder& recorder, double wall, const std::string& scene_toml,
+                      const nlohmann::json& options, bool bubbles) {
   const fs::path dir = folder_of(run_dir);
   const fs::path tmp = fs::path(run_dir) / ("checkpoint.partial." + std::to_string(::getpid()));
   std::error_code ec;
@@ -112,7 +115,8 @@ Checkpoint read_checkpoint(const std::string& run_dir) {
   std::error_code ec;
   if (!fs::exists(run_dir, ec)) throw InputError("cannot resume " + run_dir + ": no such folder");
   if (!fs::is_directory(run_dir, ec))
-    throw InputError("cannot resume " + run_dir + ": it is not a folder (give the run's output folder)");
+    throw InputError("cannot resume " + run_dir +
+                     ": it is not a folder (give the run's output folder)");
   fs::path dir = folder_of(run_dir);
   if (!fs::is_directory(dir, ec)) dir = aside_folder(run_dir);
   if (dir.empty() || !fs::exists(dir / "run.bin", ec))

@@ -30,9 +30,9 @@ struct Checkpoint {
 
 // Writes RUN_DIR/checkpoint/ of `sim` and `recorder` as they are after a step; `wall`: seconds of
 // wall time so far. Throws InputError when it cannot be written.
-void write_checkpoint(const std::string& run_dir, const Simulation& sim, const RunRecorder& recorder,
-                      double wall, const std::string& scene_toml, const nlohmann::json& options,
-                      bool bubbles);
+void write_checkpoint(const std::string& run_dir, const Simulation& sim,
+                      const RunRecorder& recorder, double wall, const std::string& scene_toml,
+                      const nlohmann::json& options, bool bubbles);
 
 // RUN_DIR's checkpoint (its scene and options); an InputError of one line when RUN_DIR is not a
 // folder or holds no checkpoint.

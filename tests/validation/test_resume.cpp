@@ -23,9 +23,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// 300 spheres of the paper on a lattice 6 cm tall, landing on the jet (gas stepped every 20 particle
-// steps): by 0.12 s (8000 steps, 0.15 s of wall time here) dp carries 40 % of the bed's weight and
-// 70 contacts hold history.
+// 300 spheres of the paper on a lattice 6 cm tall, landing on the jet (gas stepped every 20
+// particle steps): by 0.12 s (8000 steps, 0.15 s of wall time here) dp carries 40 % of the bed's
+// weight and 70 contacts hold history.
 fs::path write_scene(const fs::path& dir) {
   const fs::path p = dir / "small.toml";
   write_file(p, R"([scene]
@@ -80,14 +80,16 @@ int run_and_terminate(const fs::path& scene, const fs::path& dir, double delay) 
                           " --out " + quoted(dir) + " > " + quoted(dir / "out.txt") + " 2> " +
                           quoted(dir / "err.txt") + " & p=$!; while [ ! -e " + started +
                           " ] && kill -0 $p 2> /dev/null; do sleep 0.005; done; sleep " + sleep_s +
-                          "; kill -TERM $p 2> /dev/null; wait $p; echo $? > " + quoted(dir / "rc.txt") + "'";
+                          "; kill -TERM $p 2> /dev/null; wait $p; echo $? > " +
+                          quoted(dir / "rc.txt") + "'";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
   return std::stoi(read_file(dir / "rc.txt"));
 }
 
 // `fluidbed run SCENE --out DIR` to its end; the wall seconds of its steps.
 double timed_run(const fs::path& scene, const fs::path& out) {
-  const CommandResult r = run_fluidbed("run " + quoted(scene) + " --out " + quoted(out), "resume-ref");
+  const CommandResult r =
+      run_fluidbed("run " + quoted(scene) + " --out " + quoted(out), "resume-ref");
   EXPECT_EQ(r.status, 0) << r.err;
   return nlohmann::json::parse(read_file(out / "summary.json"))["wall_time_s"].get<double>();
 }
@@ -136,15 +138,19 @@ void expect_same_run(const RunResult& a, const RunResult& b) {
     y.erase(k);
   }
   EXPECT_EQ(x, y);
-  EXPECT_EQ(timeseries_header(false) + [&] {
-    std::string t;
-    for (const auto& r : a.rows) t += timeseries_line(r, false);
-    return t;
-  }(), timeseries_header(false) + [&] {
-    std::string t;
-    for (const auto& r : b.rows) t += timeseries_line(r, false);
-    return t;
-  }());
+  EXPECT_EQ(
+      timeseries_header(false) +
+          [&] {
+            std::string t;
+            for (const auto& r : a.rows) t += timeseries_line(r, false);
+            return t;
+          }(),
+      timeseries_header(false) +
+          [&] {
+            std::string t;
+            for (const auto& r : b.rows) t += timeseries_line(r, false);
+            return t;
+          }());
 }
 
 }  // namespace
@@ -159,7 +165,8 @@ TEST(Resume, EngineCheckpointAtAnyStepIsBitExact) {
   std::int64_t on_gas_step = -1, mid_cycle = -1;  // the first of each after steps 1000 and 2000
   RunOptions watch;
   watch.on_step = [&](const Simulation& x) {
-    if (on_gas_step < 0 && x.steps() > 1000 && x.steps_since_gas_step() == 0) on_gas_step = x.steps();
+    if (on_gas_step < 0 && x.steps() > 1000 && x.steps_since_gas_step() == 0)
+      on_gas_step = x.steps();
     if (mid_cycle < 0 && x.steps() > 2000 && x.steps_since_gas_step() == 7) mid_cycle = x.steps();
   };
   const RunResult ref = run_simulation(whole, watch);
@@ -209,7 +216,8 @@ TEST(Resume, SigtermThenResumeGivesTheUninterruptedRunsBits) {
     const std::string err = read_file(run / "err.txt");
     ASSERT_EQ(rc, 130) << err;
     ASSERT_EQ(err.rfind("interrupted at t = ", 0), 0u) << err;
-    EXPECT_NE(err.find("; resume with: fluidbed run --resume " + run.string()), std::string::npos) << err;
+    EXPECT_NE(err.find("; resume with: fluidbed run --resume " + run.string()), std::string::npos)
+        << err;
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
     EXPECT_FALSE(fs::exists(run / "summary.json"));
     ASSERT_TRUE(fs::exists(run / "checkpoint" / "state.bin"));
@@ -223,7 +231,8 @@ TEST(Resume, SigtermThenResumeGivesTheUninterruptedRunsBits) {
 
     const CommandResult resumed = run_fluidbed("run --resume " + quoted(run), "resume-run");
     ASSERT_EQ(resumed.status, 0) << resumed.err;
-    EXPECT_EQ(read_file(run / "timeseries.csv"), read_file(ref / "timeseries.csv")) << "step " << step;
+    EXPECT_EQ(read_file(run / "timeseries.csv"), read_file(ref / "timeseries.csv"))
+        << "step " << step;
     EXPECT_EQ(run_numbers(run), run_numbers(ref)) << "step " << step;
     EXPECT_EQ(nlohmann::json::parse(read_file(run / "status.json"))["status"], "completed");
     // The finished folder holds an unstopped run's files (beside the shell's captures).
@@ -245,15 +254,17 @@ TEST(Resume, RefusesAChangedSceneAMissingCheckpointAndBadPaths) {
     EXPECT_EQ(std::count(c.err.begin(), c.err.end(), '\n'), 1) << c.err;
     EXPECT_NE(c.err.find(words), std::string::npos) << c.err;
   };
-  refused(run_fluidbed("run " + quoted(scene) + " --set particles.density=1350 --resume " + quoted(run),
-                       "resume-changed"),
-          "density");
+  refused(
+      run_fluidbed("run " + quoted(scene) + " --set particles.density=1350 --resume " + quoted(run),
+                   "resume-changed"),
+      "density");
   refused(run_fluidbed("run --resume " + quoted(run) + " --until 0.5", "resume-until"), "--until");
   const fs::path empty = dir / "empty";
   fs::create_directories(empty);
   refused(run_fluidbed("run --resume " + quoted(empty), "resume-empty"), "no checkpoint");
   refused(run_fluidbed("run --resume " + quoted(scene), "resume-file"), "not a folder");
-  refused(run_fluidbed("run --resume " + quoted(dir / "missing"), "resume-missing"), "no such folder");
+  refused(run_fluidbed("run --resume " + quoted(dir / "missing"), "resume-missing"),
+          "no such folder");
   // The refusals left the checkpoint as it was: the run still resumes.
   const CommandResult ok = run_fluidbed("run --resume " + quoted(run), "resume-after-refusals");
   EXPECT_EQ(ok.status, 0) << ok.err;
