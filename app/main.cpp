@@ -92,7 +92,13 @@ int main(int argc, char** argv) {
   fluidbed::app::KeysArgs keys_args;
 
   auto* run = app.add_subcommand("run", "run a scene and write summary.json and timeseries.csv");
-  add_scene_options(run, run_args, true);
+  add_scene_options(run, run_args, false);  // required unless --resume (cli/run.cpp)
+  run->add_option("--checkpoint-every", run_args.checkpoint_every,
+                  "wall seconds between checkpoints in DIR/checkpoint/ (default: every 60 s for "
+                  "runs expected to take over 2 minutes; 0: only at an interrupt)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_option("--resume", run_args.resume,
+                  "finish the run whose folder DIR holds a checkpoint (an interrupted run)");
   run->add_option("--out", run_args.out, "output folder (default out/<scene name>)");
   add_output_options(run, run_args.output);
   run->add_flag("--plots", run_args.plots,
@@ -209,7 +215,10 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return fluidbed::app::run_command(run_args);
+    if (*run) {
+      run_args.threads_given = run->count("--threads") > 0;
+      return fluidbed::app::run_command(run_args);
+    }
     if (*bench)
       return bench_peer.empty() ? fluidbed::app::bench_command(bench_args)
                                 : fluidbed::app::bench_peer_command(bench_args, bench_peer);

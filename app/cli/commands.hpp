@@ -35,6 +35,11 @@ struct RunArgs {
   bool plots = false;   // run: dp.png, overlap.png, trajectory.png
   std::string track;    // run --plots: particle ids "12,345"; empty: two from the jet region
   bool bubbles = false; // run: the bubble analysis (bubbles.csv, mixing.csv, summary `bubbles`)
+  // run: wall seconds between checkpoints (DIR/checkpoint/); < 0: every 60 s once the run is
+  // expected to take over 2 minutes; 0: none but the one an interrupt writes.
+  double checkpoint_every = -1.0;
+  std::string resume;          // run --resume DIR: finish the run whose checkpoint DIR holds
+  bool threads_given = false;  // --threads was on the command line
   int repeat = 1;       // bench: runs of the same work (median, min and max reported)
 };
 

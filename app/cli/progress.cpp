@@ -29,6 +29,11 @@ RunResult run_with_progress(Simulation& sim, double until,
   opt.until = until;
   opt.bubbles = bubbles;
   opt.on_step = std::move(on_step);
+  return run_with_progress(sim, until, std::move(opt));
+}
+
+RunResult run_with_progress(Simulation& sim, double until, RunOptions opt) {
+  opt.until = until;
   const bool terminal = isatty(STDERR_FILENO) != 0;
   if (terminal) opt.progress = [until](const Simulation& s, double w) { print_progress(s, w, until); };
   RunResult r = run_simulation(sim, opt);

@@ -17,4 +17,7 @@ RunResult run_with_progress(Simulation& sim, double until,
                             std::function<void(const TimeseriesRow&)> on_row = {},
                             std::function<bool()> stop = {});
 
+// The same with every RunOptions field the caller set (its progress and until are set here).
+RunResult run_with_progress(Simulation& sim, double until, RunOptions opt);
+
 }  // namespace fluidbed::app

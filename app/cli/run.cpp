@@ -7,6 +7,9 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
@@ -14,6 +17,7 @@
 #include "core/errors.hpp"
 #include "output/frames.hpp"
 #include "output/plots.hpp"
+#include "run/checkpoint.hpp"
 #include "run/live_folder.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
@@ -44,15 +48,95 @@ std::vector<int> parse_ids(const std::string& list, std::size_t count) {
   return ids;
 }
 
+// The first line where two resolved scenes differ, as "[section] key = value" of each.
+std::string first_difference(const std::string& now, const std::string& was) {
+  std::istringstream a(now), b(was);
+  std::string la, lb, section;
+  while (true) {
+    const bool ga = static_cast<bool>(std::getline(a, la)),
+               gb = static_cast<bool>(std::getline(b, lb));
+    if (!ga && !gb) return "";
+    if (!ga) la.clear();
+    if (!gb) lb.clear();
+    if (la != lb) {
+      auto bare = [](std::string l) { return l.substr(0, l.find("  #")); };
+      return section + " " + bare(la) + ", was " + bare(lb);
+    }
+    if (!la.empty() && la[0] == '[') section = la;
+  }
+}
+
+// How the run was started, as its checkpoint keeps it (run/checkpoint.hpp, options.json).
+nlohmann::json run_options(const RunArgs& a, double until) {
+  nlohmann::json o;
+  o["format"] = 1;
+  o["scene"] = std::filesystem::absolute(a.scene).lexically_normal().string();
+  o["overrides"] = a.overrides;
+  o["until_s"] = until;
+  o["threads"] = a.threads;
+  o["checkpoint_every_s"] = a.checkpoint_every;
+  return o;
+}
+
+// `run --resume DIR`: the run's arguments from its checkpoint; anything given on the command line
+// must say the same (or a changed run would pass for the old one).
+RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
+  const std::string head = "cannot resume " + a.resume + ": ";
+  if (a.output.frames || a.output.video || a.output.vtk || !a.output.montage.empty() || a.plots ||
+      a.bubbles)
+    throw InputError(head +
+                     "--frames, --video, --vtk, --montage, --plots and --bubbles runs have no "
+                     "checkpoint, and a resumed run cannot add them");
+  if (!a.out.empty() && std::filesystem::absolute(a.out).lexically_normal() !=
+                            std::filesystem::absolute(a.resume).lexically_normal())
+    throw InputError(head + "--out " + a.out +
+                     " is not the run's folder (a resumed run finishes in DIR)");
+  RunArgs r = a;
+  r.out = a.resume;
+  try {
+    const nlohmann::json& o = c.options;
+    if (o.at("format").get<int>() != 1)
+      throw InputError(head + "the checkpoint is of another format");
+    if (r.scene.empty()) r.scene = o.at("scene").get<std::string>();
+    if (r.overrides.empty()) r.overrides = o.at("overrides").get<std::vector<std::string>>();
+    const double until = o.at("until_s").get<double>();
+    if (a.until >= 0.0 && a.until != until) {
+      char msg[160];
+      std::snprintf(msg, sizeof msg, "--until %.9g differs from the run's %.9g", a.until, until);
+      throw InputError(head + msg);
+    }
+    r.until = until;
+    if (!a.threads_given) r.threads = o.at("threads").get<int>();
+    if (a.checkpoint_every < 0.0) r.checkpoint_every = o.at("checkpoint_every_s").get<double>();
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(head + c.folder + "/options.json is not a checkpoint's options");
+  }
+  return r;
+}
+
 }  // namespace
 
-int run_command(const RunArgs& a) {
+int run_command(const RunArgs& given) {
+  std::optional<Checkpoint> checkpoint;
+  RunArgs a = given;
+  if (!given.resume.empty()) {
+    checkpoint = read_checkpoint(given.resume);
+    a = resumed_args(given, *checkpoint);
+  } else if (given.scene.empty()) {
+    throw InputError("run: give a scene file (fluidbed run SCENE.toml) or --resume DIR");
+  }
   Settings s = load_scene(a.scene, a.overrides);
   refuse_unsafe_scene(s);
   s.threads = a.threads;
+  const std::string scene_toml = to_toml(s);
+  if (checkpoint && scene_toml != checkpoint->scene_toml)
+    throw InputError("cannot resume " + given.resume +
+                     ": the scene is not the one the run started with (" +
+                     first_difference(scene_toml, checkpoint->scene_toml) + ")");
   const std::string out = a.out.empty() ? default_out(a.scene) : a.out;
   prepare_packed_bed(s);
   Simulation sim(s);
+  if (checkpoint) restore_simulation(*checkpoint, sim);
   std::unique_ptr<TrajectoryRecorder> tracks;
   if (a.plots) {
     std::vector<int> ids;
@@ -70,38 +154,68 @@ int run_command(const RunArgs& a) {
     pictures = std::make_unique<FrameOutput>(out, fo, sim, until);
     pictures->observe(sim);  // the starting state, when it is an output time
   }
-  std::function<void(const Simulation&)> on_step;
+  RunOptions opt;
   if (pictures || tracks)
-    on_step = [&](const Simulation& x) {
+    opt.on_step = [&](const Simulation& x) {
       if (pictures) pictures->observe(x);
       if (tracks) tracks->observe(x);
     };
+  opt.bubbles = a.bubbles;
   // The folder says what the run is doing while it runs (run/live_folder.hpp), and an
   // interrupt (SIGINT, SIGTERM) stops it at the end of a step.
-  LiveRunFolder live(out, s.scene.name, a.bubbles);
+  std::string start_csv;
+  if (checkpoint) {
+    std::ifstream in(std::filesystem::path(checkpoint->folder) / "timeseries.csv", std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    start_csv = text.str();
+  }
+  LiveRunFolder live(out, s.scene.name, a.bubbles, 1.0, start_csv);
   {
     std::ofstream scene_out(std::filesystem::path(out) / "scene.toml");
-    scene_out << "# the scene as run, every value resolved\n" << to_toml(s);
+    scene_out << "# the scene as run, every value resolved\n" << scene_toml;
   }
+  // Checkpoints (run/checkpoint.hpp): periodic and at an interrupt. The pictures, the plots'
+  // trajectories and the bubble tracker are not saved, so those runs have none.
+  const bool checkpoints = !pictures && !tracks && !a.bubbles;
+  if (checkpoints) {
+    const nlohmann::json options = run_options(a, until);
+    opt.checkpoint = [&, options](const Simulation& x, const RunRecorder& rec, double wall) {
+      write_checkpoint(out, x, rec, wall, scene_toml, options, a.bubbles);
+    };
+    opt.checkpoint_interval = a.checkpoint_every < 0.0 ? 60.0 : a.checkpoint_every;
+    opt.checkpoint_min_run = a.checkpoint_every < 0.0 ? 120.0 : 0.0;
+  }
+  if (checkpoint) {
+    opt.restore = [&](RunRecorder& rec) { restore_recorder(*checkpoint, rec); };
+    opt.wall_before = checkpoint->wall;
+  }
+  opt.on_row = [&](const TimeseriesRow& row) { live.row(row); };
+  opt.stop = [] { return InterruptGuard::received() != 0; };
   const InterruptGuard interrupts;
   RunResult r;
   try {
-    r = run_with_progress(sim, until, on_step, a.bubbles, [&](const TimeseriesRow& row) { live.row(row); },
-                          [] { return InterruptGuard::received() != 0; });
+    r = run_with_progress(sim, until, std::move(opt));
   } catch (const SimulationFailure& e) {
     live.failed(e.what());
     throw;
   }
   if (!r.completed) {
-    const std::string why = std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
+    const std::string why =
+        std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
     live.interrupted(sim.time(), why);
-    std::fprintf(stderr, "interrupted at t = %.6g s (%s): the timeseries so far is in %s/timeseries.csv, no summary.json\n",
-                 sim.time(), why.c_str(), out.c_str());
+    if (checkpoints)
+      std::fprintf(stderr, "interrupted at t = %.6g s; resume with: fluidbed run --resume %s\n", sim.time(),
+                   out.c_str());
+    else
+      std::fprintf(stderr, "interrupted at t = %.6g s (%s): the timeseries so far is in %s/timeseries.csv, no summary.json\n",
+                   sim.time(), why.c_str(), out.c_str());
     return 130;
   }
   const FrameStats picture_stats = pictures ? pictures->finish() : FrameStats{};
   write_run_outputs(out, r);
   live.completed(sim.time());
+  remove_checkpoint(out);  // the finished run's folder holds what an unstopped run's does
   if (!s.diagnostics.save_state.empty())
     sim.save_state((std::filesystem::path(out) / s.diagnostics.save_state).string());
   std::printf("%s: %lld steps of %zu particles to t = %.4g s in %.3g s wall (%.3g particle-steps/s)\n",

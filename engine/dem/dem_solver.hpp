@@ -118,6 +118,8 @@ class DemSolver {
   const std::vector<double>& particle_overlap() const { return overlap_; }
   // The energy ledger since construction, and the springs' energy now.
   const EnergyLedger& energy_ledger() const { return ledger_; }
+  // A run resumed from a checkpoint (run/checkpoint.hpp) carries on its ledger, not a new one.
+  void set_energy_ledger(const EnergyLedger& l) { ledger_ = l; }
   SpringEnergy spring_energy() const;
 
   // Replaces the state (a loaded file, its pair history included); the particle count must match.

@@ -23,8 +23,11 @@ class LiveRunFolder {
  public:
   // Creates DIR, removes an old summary.json, writes status "running" and the timeseries header.
   // Throws InputError when the folder or its files cannot be written.
+  // A resumed run (run/checkpoint.hpp) passes the checkpoint's timeseries.csv as `start_csv`
+  // (header included): the live file starts again from it, dropping any rows written after the
+  // checkpoint by the process that stopped.
   LiveRunFolder(std::string dir, const std::string& scene, bool bubbles,
-                double flush_interval = 1.0);
+                double flush_interval = 1.0, const std::string& start_csv = {});
   ~LiveRunFolder();
   LiveRunFolder(const LiveRunFolder&) = delete;
   LiveRunFolder& operator=(const LiveRunFolder&) = delete;

@@ -12,6 +12,7 @@
 #include "analysis/bounce_tracker.hpp"
 #include "analysis/energy_budget.hpp"
 #include "analysis/spectrum.hpp"
+#include "core/binary_io.hpp"
 #include "run/bubble_recorder.hpp"
 #include "sim/simulation.hpp"
 
@@ -57,6 +58,13 @@ class RunRecorder {
   // The bubble analysis (null without --bubbles).
   const BubbleRecorder* bubbles() const { return bubbles_ ? &*bubbles_ : nullptr; }
   BubbleRecorder* bubbles() { return bubbles_ ? &*bubbles_ : nullptr; }
+
+  // Its state as bytes and back: a run's checkpoint (run/checkpoint.hpp). restore expects a
+  // recorder built for the same run (scene and end step) on the checkpoint's simulation and
+  // refuses one that is not. The bubble analysis is not saved (its tracker's history): a run
+  // with it has no checkpoint.
+  void save(std::ostream& out) const;
+  void restore(BinarySource& in);
 
  private:
   void gas_step_done(const CouplingDiagnostics& c);

@@ -66,7 +66,11 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   };
 
   check_start(sim);
-  std::size_t rows_handed = 0;
+  if (options.restore) options.restore(recorder);
+  // A resumed run's rows so far are the caller's already.
+  std::size_t rows_handed = recorder.rows().size();
+  const std::int64_t first_step = sim.steps();
+  double next_checkpoint = options.checkpoint_interval;
   RunResult result;
   while (sim.steps() < last_step) {
     sim.step();
@@ -76,7 +80,20 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
     if (options.on_step) options.on_step(sim);
     if (options.stop && options.stop()) {
       result.completed = false;
+      if (options.checkpoint) options.checkpoint(sim, recorder, options.wall_before + wall_now());
       break;
+    }
+    if (options.checkpoint && options.checkpoint_interval > 0.0 && (sim.steps() & 63) == 0 &&
+        sim.steps() < last_step) {
+      const double w = wall_now();
+      if (w >= next_checkpoint) {
+        // The whole run's wall time projected from this part's pace.
+        const double done = static_cast<double>(sim.steps() - first_step);
+        const double total = w * static_cast<double>(last_step - first_step) / done;
+        if (options.wall_before + total > options.checkpoint_min_run)
+          options.checkpoint(sim, recorder, options.wall_before + w);
+        next_checkpoint = w + options.checkpoint_interval;
+      }
     }
     if (options.progress && (sim.steps() & 255) == 0) {
       const double w = wall_now();
@@ -86,7 +103,7 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
       }
     }
   }
-  result.summary = recorder.summary(sim, wall_now());
+  result.summary = recorder.summary(sim, options.wall_before + wall_now());
   result.dp_spectrum = recorder.dp_spectrum();
   result.rows = recorder.take_rows();
   if (BubbleRecorder* b = recorder.bubbles()) {

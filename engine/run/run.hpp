@@ -33,6 +33,18 @@ struct RunOptions {
   std::function<void(const TimeseriesRow&)> on_row;
   // Asked after every step: true ends the run there, unfinished (an interrupt).
   std::function<bool()> stop;
+  // Checkpoints (run/checkpoint.hpp): called with the simulation, the recorder and the run's wall
+  // time so far every checkpoint_interval wall seconds (<= 0: never) once the run is expected to
+  // take more than checkpoint_min_run wall seconds in all, and when `stop` ends the run. Where it
+  // falls does not change the run.
+  std::function<void(const Simulation&, const RunRecorder&, double)> checkpoint;
+  double checkpoint_interval = 0.0;  // s
+  double checkpoint_min_run = 0.0;   // s
+  // A resumed run: called once on the new recorder, before the first step, to put back a
+  // checkpoint's accumulators (run/checkpoint.hpp: restore_recorder); wall_before: the wall
+  // seconds the run took before the checkpoint (they count in the summary's wall time).
+  std::function<void(RunRecorder&)> restore;
+  double wall_before = 0.0;  // s
 };
 
 struct RunResult {

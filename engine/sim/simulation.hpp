@@ -47,6 +47,11 @@ class Simulation {
   const GasSolver* gas() const { return gas_.get(); }
   const Coupler* coupler() const { return coupler_.get(); }
   const CouplingDiagnostics& coupling_diagnostics() const { return coupling_diag_; }
+  // A run resumed from a checkpoint (run/checkpoint.hpp): the last gas step's report as it was,
+  // for the rows recorded before the next gas step.
+  void set_coupling_diagnostics(const CouplingDiagnostics& d) { coupling_diag_ = d; }
+  // Particle steps since the last gas step (0 right after one; with gas only).
+  int steps_since_gas_step() const { return since_gas_step_; }
   // Pa, bottom to top on the symmetry line (0 without gas).
   double pressure_drop() const { return gas_ ? gas_->pressure_drop() : 0.0; }
   // The superficial gas velocity from the next gas step on (m/s).

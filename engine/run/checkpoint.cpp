@@ -1,0 +1,176 @@
+#include "run/checkpoint.hpp"
+
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <type_traits>
+
+#include "core/atomic_file.hpp"
+#include "core/binary_io.hpp"
+#include "core/errors.hpp"
+#include "core/input_file.hpp"
+#include "run/run.hpp"
+
+namespace fluidbed {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr char kRunTag[8] = {'F', 'L', 'B', 'R', 'U', 'N', '0', '1'};
+static_assert(std::is_trivially_copyable_v<CouplingDiagnostics>);
+
+fs::path folder_of(const std::string& run_dir) {
+  return fs::path(run_dir) / "checkpoint";
+}
+
+// A checkpoint replaced by a newer one is renamed aside before the new one takes its name: a
+// process killed between the two renames leaves only that one.
+fs::path aside_folder(const std::string& run_dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(run_dir, ec))
+    if (e.path().filename().string().rfind("checkpoint.old.", 0) == 0 && e.is_directory())
+      return e.path();
+  return {};
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.flush();
+  if (!out) throw InputError("cannot write " + p.string());
+}
+
+struct RunHeader {
+  double wall = 0.0;
+  std::uint64_t hash = 0;
+  CouplingDiagnostics coupling;
+  EnergyLedger ledger;
+};
+
+RunHeader read_header(BinarySource& src) {
+  char tag[sizeof kRunTag];
+  src.stream().read(tag, sizeof tag);
+  if (!src.stream() || std::memcmp(tag, kRunTag, sizeof tag) != 0)
+    src.fail("not a run checkpoint's");
+  RunHeader h;
+  h.wall = src.get<double>();
+  h.hash = src.get<std::uint64_t>();
+  h.coupling = src.get<CouplingDiagnostics>();
+  h.ledger = src.get<EnergyLedger>();
+  return h;
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& run_dir, const Simulation& sim,
+                      const RunRecorder& recorder, double wall, const std::string& scene_toml,
+                      const nlohmann::json& options, bool bubbles) {
+  const fs::path dir = folder_of(run_dir);
+  const fs::path tmp = fs::path(run_dir) / ("checkpoint.partial." + std::to_string(::getpid()));
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  fs::create_directories(tmp, ec);
+  if (ec) throw InputError("cannot create " + tmp.string() + ": " + ec.message());
+  sim.save_state((tmp / "state.bin").string());
+  {
+    const fs::path p = tmp / "run.bin";
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out.write(kRunTag, sizeof kRunTag);
+    put(out, wall);
+    put(out, sim.state_hash());
+    put(out, sim.coupling_diagnostics());
+    put(out, sim.dem().energy_ledger());
+    recorder.save(out);
+    out.flush();
+    if (!out) throw InputError("cannot write " + p.string());
+  }
+  std::string csv = timeseries_header(bubbles);
+  for (const TimeseriesRow& row : recorder.rows()) csv += timeseries_line(row, bubbles);
+  write_text(tmp / "timeseries.csv", csv);
+  write_text(tmp / "scene.toml", "# the scene as run, every value resolved\n" + scene_toml);
+  write_text(tmp / "options.json", options.dump(2) + "\n");
+  nlohmann::json where;
+  where["t_s"] = sim.time();
+  where["step"] = sim.steps();
+  if (sim.has_gas()) where["steps_since_gas_step"] = sim.steps_since_gas_step();
+  where["wall_time_s"] = wall;
+  write_text(tmp / "where.json", where.dump(2) + "\n");
+  // The new checkpoint takes the name; the old one, renamed aside first, goes after.
+  const fs::path old = fs::path(run_dir) / ("checkpoint.old." + std::to_string(::getpid()));
+  fs::remove_all(old, ec);
+  if (fs::exists(dir)) {
+    fs::rename(dir, old, ec);
+    if (ec) throw InputError("cannot replace " + dir.string() + ": " + ec.message());
+  }
+  fs::rename(tmp, dir, ec);
+  if (ec) throw InputError("cannot write " + dir.string() + ": " + ec.message());
+  fs::remove_all(old, ec);
+}
+
+Checkpoint read_checkpoint(const std::string& run_dir) {
+  std::error_code ec;
+  if (!fs::exists(run_dir, ec)) throw InputError("cannot resume " + run_dir + ": no such folder");
+  if (!fs::is_directory(run_dir, ec))
+    throw InputError("cannot resume " + run_dir +
+                     ": it is not a folder (give the run's output folder)");
+  fs::path dir = folder_of(run_dir);
+  if (!fs::is_directory(dir, ec)) dir = aside_folder(run_dir);
+  if (dir.empty() || !fs::exists(dir / "run.bin", ec))
+    throw InputError("cannot resume " + run_dir + ": it holds no checkpoint (" +
+                     folder_of(run_dir).string() + " is missing)");
+  Checkpoint c;
+  c.folder = dir.string();
+  {
+    std::ifstream in = open_input_file((dir / "scene.toml").string(), "checkpoint scene");
+    std::ostringstream text;
+    text << in.rdbuf();
+    c.scene_toml = text.str();
+    const std::string head = "# the scene as run, every value resolved\n";
+    if (c.scene_toml.rfind(head, 0) == 0) c.scene_toml.erase(0, head.size());
+  }
+  {
+    const std::string p = (dir / "options.json").string();
+    std::ifstream in = open_input_file(p, "checkpoint options");
+    c.options = nlohmann::json::parse(in, nullptr, false);
+    if (c.options.is_discarded() || !c.options.is_object())
+      throw InputError(p + ": not a checkpoint's options (JSON object)");
+  }
+  const std::string p = (dir / "run.bin").string();
+  std::ifstream in = open_input_file(p, "checkpoint");
+  BinarySource src(in, p);
+  c.wall = read_header(src).wall;
+  return c;
+}
+
+void restore_simulation(const Checkpoint& c, Simulation& sim) {
+  const fs::path dir(c.folder);
+  sim.load_state((dir / "state.bin").string());
+  const std::string p = (dir / "run.bin").string();
+  std::ifstream in = open_input_file(p, "checkpoint");
+  BinarySource src(in, p);
+  const RunHeader h = read_header(src);
+  sim.set_coupling_diagnostics(h.coupling);
+  sim.dem().set_energy_ledger(h.ledger);
+  if (sim.state_hash() != h.hash)
+    throw InputError(c.folder + ": the state loaded is not the state saved (state hash differs)");
+}
+
+void restore_recorder(const Checkpoint& c, RunRecorder& recorder) {
+  const std::string p = (fs::path(c.folder) / "run.bin").string();
+  std::ifstream in = open_input_file(p, "checkpoint");
+  BinarySource src(in, p);
+  read_header(src);
+  recorder.restore(src);
+}
+
+void remove_checkpoint(const std::string& run_dir) {
+  std::error_code ec;
+  fs::remove_all(folder_of(run_dir), ec);
+  if (const fs::path old = aside_folder(run_dir); !old.empty()) fs::remove_all(old, ec);
+}
+
+}  // namespace fluidbed
