@@ -82,16 +82,17 @@ void refuse_unaffordable(const Settings& s) {
   if (!(d.height <= span)) refuse("domain.height", "is more than 10^8 particles.diameter high");
   if (!(d.width <= span)) refuse("domain.width", "is more than 10^8 particles.diameter wide");
   const double particles = 1024.0 * p.count;
-  const double gas =
-      s.gas.enabled ? 1024.0 * static_cast<double>(s.gas.cells_x) * static_cast<double>(s.gas.cells_y)
-                    : 0.0;
+  const double gas = s.gas.enabled ? 1024.0 * static_cast<double>(s.gas.cells_x) *
+                                         static_cast<double>(s.gas.cells_y)
+                                   : 0.0;
   const double total = 60e6 + particles + gas;
   const double available = available_memory_bytes();
   if (!(total <= available)) {
     const bool gas_larger = gas > particles;
     refuse(gas_larger ? "gas.cells_x times gas.cells_y" : "particles.count",
            "makes the run need about " + gigabytes(total) + " of memory (" +
-               (gas_larger ? gigabytes(gas) + " for the gas cells" : gigabytes(particles) + " for the particles") +
+               (gas_larger ? gigabytes(gas) + " for the gas cells"
+                           : gigabytes(particles) + " for the particles") +
                "), more than the " + gigabytes(available) + " this machine has free");
   }
 }

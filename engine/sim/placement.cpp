@@ -67,7 +67,8 @@ Particles place_particles(const Settings& s) {
       p.y[i] = site.y;
     }
   } else {
-    throw InputError("particles.placement \"" + option_string(ps.placement) + "\" does not place particles");
+    throw InputError("particles.placement \"" + option_string(ps.placement) +
+                     "\" does not place particles");
   }
   return p;
 }

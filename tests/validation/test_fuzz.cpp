@@ -47,7 +47,9 @@ class Generator {
 
   std::size_t below(std::size_t n) { return static_cast<std::size_t>(rng_.below(n)); }
   template <class T>
-  const T& pick(const std::vector<T>& v) { return v[below(v.size())]; }
+  const T& pick(const std::vector<T>& v) {
+    return v[below(v.size())];
+  }
 
   // A value for a key: mostly of its own type, at and beyond its bounds; sometimes of another
   // type or plain garbage.
@@ -67,10 +69,11 @@ class Generator {
   std::string number(const std::string& def) {
     const double d = std::atof(def.c_str());
     static const std::vector<std::string> special = {
-        "0.0",   "-0.0",   "-1.0",    "1e-300", "-1e-300", "1e300", "-1e300", "nan",
-        "inf",   "-inf",   "1e-9",    "1e9",    "4.9e-324", "1.7976931348623157e308"};
+        "0.0", "-0.0", "-1.0", "1e-300", "-1e-300", "1e300",    "-1e300",
+        "nan", "inf",  "-inf", "1e-9",   "1e9",     "4.9e-324", "1.7976931348623157e308"};
     if (below(2) == 0) return special[below(special.size())];
-    static const double factor[] = {-1.0, 0.0, 1e-6, 0.1, 0.5, 0.99, 1.0, 1.01, 2.0, 10.0, 1e3, 1e6};
+    static const double factor[] = {-1.0, 0.0,  1e-6, 0.1,  0.5, 0.99,
+                                    1.0,  1.01, 2.0,  10.0, 1e3, 1e6};
     char text[40];
     std::snprintf(text, sizeof text, "%.17g", (d == 0.0 ? 1.0 : d) * factor[below(12)]);
     std::string s = text;
@@ -80,9 +83,16 @@ class Generator {
 
   std::string integer(const std::string& def) {
     const long long d = std::atoll(def.c_str());
-    static const std::vector<std::string> special = {
-        "0", "-1", "1", "2", "3", "2147483647", "2147483648", "-2147483649",
-        "9223372036854775807", "99999999999999999999"};
+    static const std::vector<std::string> special = {"0",
+                                                     "-1",
+                                                     "1",
+                                                     "2",
+                                                     "3",
+                                                     "2147483647",
+                                                     "2147483648",
+                                                     "-2147483649",
+                                                     "9223372036854775807",
+                                                     "99999999999999999999"};
     if (below(2) == 0) return special[below(special.size())];
     static const long long factor[] = {-1, 0, 1, 2, 10, 1000};
     return std::to_string(d * factor[below(6)] + static_cast<long long>(below(3)) - 1);
@@ -137,8 +147,8 @@ class Generator {
  private:
   SplitMix64 rng_;
   std::vector<SceneKey> keys_;
-  const std::vector<std::string> garbage_ = {"\"text\"", "[1, 2]", "{ a = 1 }", "1979-05-27",
-                                             "0x10", "1_000", "+", "\"\\u0000\"", ""};
+  const std::vector<std::string> garbage_ = {
+      "\"text\"", "[1, 2]", "{ a = 1 }", "1979-05-27", "0x10", "1_000", "+", "\"\\u0000\"", ""};
 };
 
 struct Outcome {
@@ -175,7 +185,8 @@ TEST(Fuzz, GeneratedScenesEndInOneLineWithStatus023) {
   Generator gen(seed);
   std::vector<std::string> shipped;
   for (const char* name : {"drop", "packing", "xu_yu_1997", "teaching", "ideal", "wide"})
-    shipped.push_back(read_text(fs::path(FLUIDBED_ASSET_DIR) / "scenes" / (std::string(name) + ".toml")));
+    shipped.push_back(
+        read_text(fs::path(FLUIDBED_ASSET_DIR) / "scenes" / (std::string(name) + ".toml")));
 
   std::map<int, int> statuses;
   double slowest = 0.0;
@@ -186,16 +197,29 @@ TEST(Fuzz, GeneratedScenesEndInOneLineWithStatus023) {
     std::vector<std::string> sets;
     std::string kind;
     switch (gen.below(10)) {
-      case 0: text = gen.truncated(text); kind = "truncated"; break;
-      case 1: text = gen.binary(text); kind = "binary"; break;
-      case 2: text = gen.scene(); kind = "generated"; break;
-      default: sets = gen.overrides(); kind = "set"; break;
+      case 0:
+        text = gen.truncated(text);
+        kind = "truncated";
+        break;
+      case 1:
+        text = gen.binary(text);
+        kind = "binary";
+        break;
+      case 2:
+        text = gen.scene();
+        kind = "generated";
+        break;
+      default:
+        sets = gen.overrides();
+        kind = "set";
+        break;
     }
     std::string label = "case " + std::to_string(k) + " (" + kind + ")";
     for (const auto& l : sets) label += " --set " + l;
     const auto t0 = std::chrono::steady_clock::now();
     const Outcome out = run_case(text, sets);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (wall > slowest) slowest = wall, slowest_case = label;
     ++statuses[out.status];
     EXPECT_NE(out.status, -1) << label << ": " << out.message;
@@ -205,9 +229,10 @@ TEST(Fuzz, GeneratedScenesEndInOneLineWithStatus023) {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double peak_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
-  std::printf("%d cases: %d ran, %d refused (2), %d failed in words (3); slowest %.2f s (%s); "
-              "peak memory %.0f MB\n",
-              kCases, statuses[0], statuses[2], statuses[3], slowest, slowest_case.c_str(), peak_mb);
+  std::printf(
+      "%d cases: %d ran, %d refused (2), %d failed in words (3); slowest %.2f s (%s); "
+      "peak memory %.0f MB\n",
+      kCases, statuses[0], statuses[2], statuses[3], slowest, slowest_case.c_str(), peak_mb);
 #if defined(__SANITIZE_ADDRESS__)
   // The address sanitizer keeps freed memory in quarantine and adds its shadow: the bound is the
   // Release build's.
