@@ -1,5 +1,6 @@
 // fluidbed run: one scene to its end, summary.json and timeseries.csv; with options its frames,
-// video, montage, VTK files and the paper's plots (README.md, "Pictures, video and ParaView files").
+// video, montage, VTK files and the paper's plots (README.md, "Pictures, video and ParaView
+// files").
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -163,14 +164,8 @@ int run_command(const RunArgs& given) {
   opt.bubbles = a.bubbles;
   // The folder says what the run is doing while it runs (run/live_folder.hpp), and an
   // interrupt (SIGINT, SIGTERM) stops it at the end of a step.
-  std::string start_csv;
-  if (checkpoint) {
-    std::ifstream in(std::filesystem::path(checkpoint->folder) / "timeseries.csv", std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    start_csv = text.str();
-  }
-  LiveRunFolder live(out, s.scene.name, a.bubbles, 1.0, start_csv);
+  LiveRunFolder live(out, s.scene.name, a.bubbles, 1.0,
+                     checkpoint ? checkpoint->timeseries_csv : std::string());
   {
     std::ofstream scene_out(std::filesystem::path(out) / "scene.toml");
     scene_out << "# the scene as run, every value resolved\n" << scene_toml;
@@ -205,10 +200,12 @@ int run_command(const RunArgs& given) {
         std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
     live.interrupted(sim.time(), why);
     if (checkpoints)
-      std::fprintf(stderr, "interrupted at t = %.6g s; resume with: fluidbed run --resume %s\n", sim.time(),
-                   out.c_str());
+      std::fprintf(stderr, "interrupted at t = %.6g s; resume with: fluidbed run --resume %s\n",
+                   sim.time(), out.c_str());
     else
-      std::fprintf(stderr, "interrupted at t = %.6g s (%s): the timeseries so far is in %s/timeseries.csv, no summary.json\n",
+      std::fprintf(stderr,
+                   "interrupted at t = %.6g s (%s): the timeseries so far is in %s/timeseries.csv, "
+                   "no summary.json\n",
                    sim.time(), why.c_str(), out.c_str());
     return 130;
   }
@@ -218,23 +215,27 @@ int run_command(const RunArgs& given) {
   remove_checkpoint(out);  // the finished run's folder holds what an unstopped run's does
   if (!s.diagnostics.save_state.empty())
     sim.save_state((std::filesystem::path(out) / s.diagnostics.save_state).string());
-  std::printf("%s: %lld steps of %zu particles to t = %.4g s in %.3g s wall (%.3g particle-steps/s)\n",
-              s.scene.name.c_str(), static_cast<long long>(r.summary["steps"].get<std::int64_t>()),
-              sim.particle_count(), sim.time(), r.summary["wall_time_s"].get<double>(),
-              r.summary["particle_steps_per_s"].get<double>());
+  std::printf(
+      "%s: %lld steps of %zu particles to t = %.4g s in %.3g s wall (%.3g particle-steps/s)\n",
+      s.scene.name.c_str(), static_cast<long long>(r.summary["steps"].get<std::int64_t>()),
+      sim.particle_count(), sim.time(), r.summary["wall_time_s"].get<double>(),
+      r.summary["particle_steps_per_s"].get<double>());
   std::printf("wrote %s/summary.json and %s/timeseries.csv\n", out.c_str(), out.c_str());
   if (r.bubbles) {
     const auto& b = r.summary["bubbles"];
     auto num = [&](const char* k) { return b[k].is_number() ? b[k].get<double>() : 0.0; };
-    std::printf("bubbles: %.2f formed per s, %.2f eruptions per s, mean D_e %.1f mm, rise %.3f m/s, "
-                "regime %s; wrote %s/bubbles.csv and %s/mixing.csv\n",
-                num("formed_per_s"), num("eruptions_per_s"), 1e3 * num("mean_d_eq_m"),
-                num("mean_rise_velocity_m_s"), b["regime"].get<std::string>().c_str(), out.c_str(),
-                out.c_str());
+    std::printf(
+        "bubbles: %.2f formed per s, %.2f eruptions per s, mean D_e %.1f mm, rise %.3f m/s, "
+        "regime %s; wrote %s/bubbles.csv and %s/mixing.csv\n",
+        num("formed_per_s"), num("eruptions_per_s"), 1e3 * num("mean_d_eq_m"),
+        num("mean_rise_velocity_m_s"), b["regime"].get<std::string>().c_str(), out.c_str(),
+        out.c_str());
   }
-  if (pictures) report_frame_output(out, a.output, picture_stats, r.summary["wall_time_s"].get<double>());
+  if (pictures)
+    report_frame_output(out, a.output, picture_stats, r.summary["wall_time_s"].get<double>());
   if (tracks) {
-    const auto files = plot_run(out, r, tracks->tracks(), s.domain.width, s.domain.height, sim.has_gas());
+    const auto files =
+        plot_run(out, r, tracks->tracks(), s.domain.width, s.domain.height, sim.has_gas());
     for (const auto& f : files) std::printf("wrote %s\n", f.c_str());
   }
   return 0;

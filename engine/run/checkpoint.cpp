@@ -133,6 +133,12 @@ Checkpoint read_checkpoint(const std::string& run_dir) {
     if (c.scene_toml.rfind(head, 0) == 0) c.scene_toml.erase(0, head.size());
   }
   {
+    std::ifstream in = open_input_file((dir / "timeseries.csv").string(), "checkpoint timeseries");
+    std::ostringstream text;
+    text << in.rdbuf();
+    c.timeseries_csv = text.str();
+  }
+  {
     const std::string p = (dir / "options.json").string();
     std::ifstream in = open_input_file(p, "checkpoint options");
     c.options = nlohmann::json::parse(in, nullptr, false);

@@ -22,10 +22,11 @@
 namespace fluidbed {
 
 struct Checkpoint {
-  std::string folder;      // DIR/checkpoint
-  std::string scene_toml;  // scene.toml
-  nlohmann::json options;  // options.json
-  double wall = 0.0;       // s of wall time the run took up to the checkpoint
+  std::string folder;          // DIR/checkpoint
+  std::string scene_toml;      // scene.toml
+  nlohmann::json options;      // options.json
+  std::string timeseries_csv;  // timeseries.csv: the rows so far, header included
+  double wall = 0.0;           // s of wall time the run took up to the checkpoint
 };
 
 // Writes RUN_DIR/checkpoint/ of `sim` and `recorder` as they are after a step; `wall`: seconds of
