@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
-BUILD_DIR=build-sanitize BUILD_TYPE=RelWithDebInfo scripts/build.sh -DFLUIDBED_SANITIZE=ON -DFLUIDBED_BENCHMARKS=OFF
+BUILD_DIR=build-sanitize BUILD_TYPE=RelWithDebInfo scripts/build.sh -DFLUIDBED_SANITIZE=ON -DFLUIDBED_BENCHMARKS=OFF \
+  -DFLUIDBED_LONG_TESTS=OFF
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)" -LE long
 # The engine/viewer pair under the thread sanitizer: only the engine and one small test binary
