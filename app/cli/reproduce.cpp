@@ -192,12 +192,12 @@ Figure figure(const std::vector<nlohmann::json>& summaries, const char* key) {
   return f;
 }
 
-// "1.78 +- 0.12 m/s (3 seeds)" (the number format F has the unit), or the one seed's value.
-std::string pm(const Figure& f, const char* format, double scale = 1.0) {
+// "1.78 +- 0.12 m/s (3 seeds)", or the one seed's value "1.78 m/s (1 seed)".
+std::string pm(const Figure& f, const char* format, const char* unit, double scale = 1.0) {
   if (f.n == 0) return "n/a";
   std::string s = fmt(format, scale * f.mean);
   if (f.n > 1) s += " +- " + fmt(format, scale * f.sd);
-  return s + " (" + std::to_string(f.n) + (f.n == 1 ? " seed)" : " seeds)");
+  return s + unit + " (" + std::to_string(f.n) + (f.n == 1 ? " seed)" : " seeds)");
 }
 
 // Whether the paper's value lies within two standard deviations of the ensemble mean.
@@ -348,7 +348,8 @@ int reproduce_command(const ReproduceArgs& a) {
   const double wall_per_sim = pr.wall / std::max(paper_time, 1e-9);
   std::ostringstream md;
   md << "# fluidbed against Xu & Yu (1997)\n\n";
-  md << "Made by `fluidbed reproduce" << (a.quick ? " --quick" : "") << "`. Every number below "
+  md << "Made by `fluidbed reproduce" << (a.quick ? " --quick" : "")
+     << (a.seeds.empty() ? "" : " --seeds " + a.seeds) << "`. Every number below "
      << "is measured by this run; none is tuned to the paper.\n\n";
   md << "A fluidized bed is chaotic: another packing of the same particles gives another run. "
      << "The paper's bed, its uniform twin and the sweep ran from " << seeds.size()
@@ -362,8 +363,8 @@ int reproduce_command(const ReproduceArgs& a) {
   md << "| paper figure or number | paper | fluidbed | difference |\n|---|---|---|---|\n";
   if (umf.n > 0) {
     md << "| U_mf, decreasing branch (Fig. 6, point E) | 1.8 m/s (Wen-Yu 1.77) | "
-       << pm(umf, "%.2f") << " m/s | " << fmt("%+.0f %%", 100.0 * (umf.mean / 1.8 - 1.0)) << "; "
-       << within_two_sd(umf, 1.8) << " |\n";
+       << pm(umf, "%.2f", " m/s") << " | " << fmt("%+.0f %%", 100.0 * (umf.mean / 1.8 - 1.0))
+       << "; " << within_two_sd(umf, 1.8) << " |\n";
   } else {
     md << "| U_mf, decreasing branch (Fig. 6) | 1.8 m/s | not found: " << sr.umf.why << " | |\n";
   }
@@ -374,24 +375,24 @@ int reproduce_command(const ReproduceArgs& a) {
   const Figure dp_u = figure(summaries_of(urs), "dp_mean_pa");
   const Figure dp_j = figure(summaries_of(prs), "dp_mean_pa");
   md << "| mean dp at 2.8 m/s, uniform distributor (model A: the bed carries its weight) | "
-     << "1.005 of W/A (measured, model.md 2.1) | " << pm(dp_u, "%.0f") << " Pa"
+     << "1.005 of W/A (measured, model.md 2.1) | " << pm(dp_u, "%.0f", " Pa")
      << fmt(" (weight %.0f Pa)", weight) << " | "
      << fmt("%+.0f %%", 100.0 * (dp_u.mean / weight - 1.0)) << " |\n";
   md << "| mean dp at 2.8 m/s, central jet (eq 30, Fig. 8; dead zones rest on the floor) | "
-     << "below W/A (DPMFoam 0.77) | " << pm(dp_j, "%.0f") << " Pa"
+     << "below W/A (DPMFoam 0.77) | " << pm(dp_j, "%.0f", " Pa")
      << fmt(" = %.3f of W/A", dp_j.mean / weight) << " | "
      << fmt("%.3f of the uniform bed's", dp_j.mean / dp_u.mean) << " |\n";
   md << "| dominant frequency of dp at 2.8 m/s, central jet (Welch) | | "
-     << pm(figure(summaries_of(prs), "dp_spectrum.dominant_frequency_refined_hz"), "%.2f")
-     << " Hz | |\n";
+     << pm(figure(summaries_of(prs), "dp_spectrum.dominant_frequency_refined_hz"), "%.2f", " Hz")
+     << " | |\n";
   md << "| mean bed height after start-up, central jet | | "
-     << pm(figure(summaries_of(prs), "bed_height_mean_m"), "%.3f") << " m | |\n";
+     << pm(figure(summaries_of(prs), "bed_height_mean_m"), "%.3f", " m") << " | |\n";
   md << "| start-up peak of dp (Fig. 8) | far above the stable level | "
      << fmt("%.0f Pa", num(pj, "dp_max_pa")) << fmt(" at t = %.3f s", num(pj, "dp_max_time_s"))
      << " | " << fmt("%.1f x the mean", num(pj, "dp_max_pa") / dp_mean) << " |\n";
   const Figure overlap = figure(summaries_of(prs), "max_overlap_ratio");
-  md << "| max overlap ratio at start-up (Fig. 15) | 1.7 % | " << pm(overlap, "%.2f", 100.0)
-     << " % | " << within_two_sd(overlap, 0.017) << " |\n";
+  md << "| max overlap ratio at start-up (Fig. 15) | 1.7 % | " << pm(overlap, "%.2f", " %", 100.0)
+     << " | " << within_two_sd(overlap, 0.017) << " |\n";
   md << "| max overlap ratio after start-up (Fig. 15) | well below 1 % | "
      << fmt("%.2f %%", 100.0 * num(pj, "max_overlap_ratio_after_startup")) << " | |\n";
   md << "| ideal case: a regular dp cycle (Fig. 17) | one bubble forms, grows to a slug and "
