@@ -272,7 +272,7 @@ void plot_sweep_ensemble(const std::string& path, const std::vector<SweepResult>
       s.width = 1.0;
       s.colour = b == 0 ? faint_up : faint_down;
       s.dashed = b == 1;
-      if (k == 0) s.label = b == 0 ? "one packing, increasing" : "one packing, decreasing";
+      if (k == 0) s.label = b == 0 ? "each packing, increasing" : "each packing, decreasing";
       for (const auto& p : b == 0 ? members[k].up : downs[k])
         if (p.ok) {
           s.x.push_back(p.u);
