@@ -106,6 +106,9 @@ int main(int argc, char** argv) {
   run->add_flag("--bubbles", run_args.bubbles,
                 "bubble analysis: bubbles.csv, mixing.csv, summary.json `bubbles` (with --plots: "
                 "bubbles.png, mixing.png)");
+  run->add_option("--seeds", run_args.seeds,
+                  "an ensemble over packings: N seeds from the scene's (s0, s0+1, ...) or a list "
+                  "3,7,11; each run in DIR/seeds/S/, the ensemble in DIR/summary.json");
   run->add_option("--track", run_args.track,
                   "particle ids to follow for --plots: 12,345 (default: two from the jet region)");
 
@@ -130,11 +133,17 @@ int main(int argc, char** argv) {
                     "seconds into each run where the mean (eq 30) starts (0.5)");
   sweep->add_option("--threads", sweep_args.threads, "runs side by side (2)")->check(CLI::PositiveNumber);
   sweep->add_option("--out", sweep_args.out, "output folder (default out/sweep)");
+  sweep->add_option("--seeds", sweep_args.seeds,
+                    "one sweep per packing: N seeds from the scene's (s0, s0+1, ...) or a list "
+                    "3,7,11; each in DIR/seeds/S/, U_mf's mean and spread in DIR/summary.json");
 
   auto* reproduce = app.add_subcommand("reproduce", "every figure of the paper, with a report");
   reproduce->add_option("--out", reproduce_args.out, "output folder (default out/reproduce)");
   reproduce->add_flag("--quick", reproduce_args.quick, "shorter runs: every figure in minutes");
   reproduce->add_option("--threads", reproduce_args.threads, "threads inside a step");
+  reproduce->add_option("--seeds", reproduce_args.seeds,
+                        "packings of the paper's bed, its uniform twin and the sweep: N or a list "
+                        "3,7,11 (default 3; --quick: 1); figures as mean +- std");
   reproduce->add_option("--set", reproduce_args.overrides,
                         "override a value in every scene: section.key=value")
       ->take_all()

@@ -41,6 +41,8 @@ struct RunArgs {
   std::string resume;          // run --resume DIR: finish the run whose checkpoint DIR holds
   bool threads_given = false;  // --threads was on the command line
   int repeat = 1;       // bench: runs of the same work (median, min and max reported)
+  // run --seeds: an ensemble over packings (run/ensemble.hpp: "N" or "3,7,11"); empty: one run.
+  std::string seeds;
 };
 
 struct SweepArgs {
@@ -51,6 +53,7 @@ struct SweepArgs {
   double averaging_start = 0.5;  // s into each run
   int threads = 2;               // runs side by side
   std::string out;
+  std::string seeds;  // sweep --seeds: one sweep per packing (run/ensemble.hpp); empty: one
 };
 
 struct ReproduceArgs {
@@ -58,6 +61,7 @@ struct ReproduceArgs {
   std::vector<std::string> overrides;  // applied to every scene (e.g. a smaller bed)
   bool quick = false;  // every figure at lower fidelity, in minutes
   int threads = 1;
+  std::string seeds;  // packings (run/ensemble.hpp); empty: 3, with --quick 1
 };
 
 struct CheckArgs {
@@ -66,6 +70,7 @@ struct CheckArgs {
 };
 
 int run_command(const RunArgs& a);
+
 int check_command(const CheckArgs& a);
 int bench_command(const RunArgs& a);
 int sweep_command(const SweepArgs& a);

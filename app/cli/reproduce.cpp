@@ -10,9 +10,11 @@
 
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
+#include "core/run_pool.hpp"
 #include "core/threads.hpp"
 #include "output/frames.hpp"
 #include "output/plots.hpp"
+#include "run/ensemble.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
 #include "run/sweep.hpp"
@@ -174,6 +176,65 @@ void ideal_section(std::ostringstream& md, const nlohmann::json& ij, const nlohm
      << "differ in sign and size (the energy study gives both for an elastic box).\n\n";
 }
 
+// One figure over the seeds (run/ensemble.hpp's entry), or the single run's value.
+struct Figure {
+  double mean = NAN, sd = NAN;  // sd: NaN with one seed
+  std::size_t n = 0;
+};
+
+Figure figure(const std::vector<nlohmann::json>& summaries, const char* key) {
+  const nlohmann::json e = ensemble_statistics(summaries);
+  Figure f;
+  if (!e.contains(key)) return f;
+  f.mean = e[key]["mean"].get<double>();
+  f.sd = e[key]["std"].is_number() ? e[key]["std"].get<double>() : NAN;
+  f.n = e[key]["n"].get<std::size_t>();
+  return f;
+}
+
+// "1.78 +- 0.12 m/s (3 seeds)", or the one seed's value "1.78 m/s (1 seed)".
+std::string pm(const Figure& f, const char* format, const char* unit, double scale = 1.0) {
+  if (f.n == 0) return "n/a";
+  std::string s = fmt(format, scale * f.mean);
+  if (f.n > 1) s += " +- " + fmt(format, scale * f.sd);
+  return s + unit + " (" + std::to_string(f.n) + (f.n == 1 ? " seed)" : " seeds)");
+}
+
+// Whether the paper's value lies within two standard deviations of the ensemble mean.
+std::string within_two_sd(const Figure& f, double paper) {
+  if (f.n < 2 || !std::isfinite(f.sd)) return "one seed: spread not measured";
+  return std::abs(f.mean - paper) <= 2.0 * f.sd ? "the paper's value within 2 std"
+                                                : "the paper's value outside 2 std";
+}
+
+// A scene from every seed, side by side: the first seed's run in `base` (with its figures, as
+// without an ensemble), the others in base/seeds/S/; with more than one seed, base/ensemble.json
+// (run/ensemble.hpp) over all of them. Returns the runs in seed order.
+std::vector<TrackedRun> run_seeds(const fs::path& base, const Settings& s, double until,
+                                  const std::vector<std::uint64_t>& seeds,
+                                  const std::vector<std::pair<double, double>>& track_at = {}) {
+  const int workers = std::max(1, resolve_threads(0) / resolve_threads(s.threads));
+  const std::vector<TrackedRun> runs =
+      RunPool(workers).map<TrackedRun>(seeds.size(), [&](std::size_t k) {
+        const fs::path dir = k == 0 ? base : base / "seeds" / std::to_string(seeds[k]);
+        return run_into(dir, with_seed(s, seeds[k]), until, track_at);
+      });
+  if (seeds.size() > 1) {
+    std::vector<nlohmann::json> summaries;
+    for (const auto& r : runs) summaries.push_back(r.result.summary);
+    write_file_atomically((base / "ensemble.json").string(), [&](std::ostream& o) {
+      o << ensemble_summary(summaries, seeds).dump(2) << "\n";
+    });
+  }
+  return runs;
+}
+
+std::vector<nlohmann::json> summaries_of(const std::vector<TrackedRun>& runs) {
+  std::vector<nlohmann::json> s;
+  for (const auto& r : runs) s.push_back(r.result.summary);
+  return s;
+}
+
 }  // namespace
 
 int reproduce_command(const ReproduceArgs& a) {
@@ -201,13 +262,19 @@ int reproduce_command(const ReproduceArgs& a) {
   // Every scene refused before the first step, not after the runs before it.
   for (const char* name : {"xu_yu_1997.toml", "ideal.toml"})
     refuse_unsafe_scene(load_scene(scenes + name, a.overrides));
+  // The packings: 3 by default (1 with --quick); the paper's bed, its uniform twin and the sweep
+  // run from each, the ideal case from the first.
+  const std::vector<std::uint64_t> seeds =
+      parse_seeds(a.seeds.empty() ? (a.quick ? "1" : "3") : a.seeds,
+                  lattice_seed(load_scene(scenes + "xu_yu_1997.toml", a.overrides)));
   // 1. The paper's bed at 2.8 m/s (Figs 8, 12-13, 15), tracking particles from the jet region.
   log("== the paper's bed at U = 2.8 m/s");
   Settings paper = load_scene(scenes + "xu_yu_1997.toml", a.overrides);
   paper.threads = a.threads;
   paper.diagnostics.averaging_start = averaging;
-  const TrackedRun pr = run_into(fs::path(out) / "paper_bed", paper, paper_time,
-                                 jet_region_points(paper.domain.width));
+  const std::vector<TrackedRun> prs = run_seeds(fs::path(out) / "paper_bed", paper, paper_time,
+                                                seeds, jet_region_points(paper.domain.width));
+  const TrackedRun& pr = prs.front();
 
   // 1b. The same bed fed over its whole bottom (a uniform distributor): the like-with-like check of
   // dp against the bed weight (model.md 2.1: the jetted bed's dead zones rest on the floor).
@@ -216,11 +283,13 @@ int reproduce_command(const ReproduceArgs& a) {
   uniform.threads = a.threads;
   uniform.inlet.kind = InletKind::Uniform;
   uniform.diagnostics.averaging_start = averaging;
-  const TrackedRun ur = run_into(fs::path(out) / "uniform", uniform, uniform_time);
+  const std::vector<TrackedRun> urs =
+      run_seeds(fs::path(out) / "uniform", uniform, uniform_time, seeds);
+  const TrackedRun& ur = urs.front();
 
   // 2. The ideal case (Figs 16-17).
   log("== the ideal case (eta = 0, gamma = 0)");
-  Settings ideal = load_scene(scenes + "ideal.toml", a.overrides);
+  Settings ideal = with_seed(load_scene(scenes + "ideal.toml", a.overrides), seeds.front());
   ideal.threads = a.threads;
   ideal.diagnostics.averaging_start = averaging;
   // Six pictures over the run, to hold beside the paper's description of Figs 16-17.
@@ -237,8 +306,27 @@ int reproduce_command(const ReproduceArgs& a) {
   // 3. The velocity sweep (Fig. 6) and U_mf.
   log("== the velocity sweep");
   Settings sweep_scene = load_scene(scenes + "xu_yu_1997.toml", a.overrides);
-  const SweepResult sr = run_sweep(sweep_scene, so);
-  write_sweep_outputs(sr, so, sweep_scene.scene.name);
+  std::vector<SweepResult> srs;
+  std::vector<nlohmann::json> sweep_summaries;
+  for (std::size_t k = 0; k < seeds.size(); ++k) {  // one sweep after another, runs side by side
+    SweepOptions o = so;
+    if (k > 0) o.out_dir = (fs::path(so.out_dir) / "seeds" / std::to_string(seeds[k])).string();
+    fs::create_directories(o.out_dir);
+    srs.push_back(run_sweep(with_seed(sweep_scene, seeds[k]), o));
+    write_sweep_outputs(srs.back(), o, sweep_scene.scene.name);
+    sweep_summaries.push_back(sweep_summary(srs.back(), o, sweep_scene.scene.name));
+  }
+  const SweepResult& sr = srs.front();
+  const Figure umf = figure(sweep_summaries, "umf_m_s");
+  if (seeds.size() > 1) {
+    const nlohmann::json ens = ensemble_summary(sweep_summaries, seeds);
+    write_file_atomically((fs::path(so.out_dir) / "ensemble.json").string(),
+                          [&](std::ostream& o) { o << ens.dump(2) << "\n"; });
+    plot_sweep_ensemble(
+        (fs::path(so.out_dir) / "sweep_ensemble.png").string(), srs,
+        ens["ensemble"].contains("umf_m_s") ? ens["ensemble"]["umf_m_s"] : nlohmann::json(nullptr),
+        sweep_scene.scene.name);
+  }
 
   // 4. The studies (speed against accuracy, stability, model choices): tiny with --quick. They
   // use their own scenes; the --set overrides above do not apply to them.
@@ -260,13 +348,23 @@ int reproduce_command(const ReproduceArgs& a) {
   const double wall_per_sim = pr.wall / std::max(paper_time, 1e-9);
   std::ostringstream md;
   md << "# fluidbed against Xu & Yu (1997)\n\n";
-  md << "Made by `fluidbed reproduce" << (a.quick ? " --quick" : "") << "`. Every number below "
+  md << "Made by `fluidbed reproduce" << (a.quick ? " --quick" : "")
+     << (a.seeds.empty() ? "" : " --seeds " + a.seeds) << "`. Every number below "
      << "is measured by this run; none is tuned to the paper.\n\n";
+  md << "A fluidized bed is chaotic: another packing of the same particles gives another run. "
+     << "The paper's bed, its uniform twin and the sweep ran from " << seeds.size()
+     << (seeds.size() == 1 ? " packing (lattice seed " : " packings (lattice seeds ");
+  for (std::size_t k = 0; k < seeds.size(); ++k) md << (k ? ", " : "") << seeds[k];
+  md << (a.quick && a.seeds.empty() ? "; `--quick` runs one, so no spread is measured" : "")
+     << "). Figures marked +- are the mean and sample standard deviation over the seeds (n - 1), "
+     << "with their number; the other rows, the figures and the ideal case are the first seed's "
+     << "run (the other seeds' runs are in `paper_bed/seeds/S/`, `uniform/seeds/S/` and "
+     << "`sweep/seeds/S/`, their spread in each folder's `ensemble.json`).\n\n";
   md << "| paper figure or number | paper | fluidbed | difference |\n|---|---|---|---|\n";
-  if (sr.umf.ok) {
+  if (umf.n > 0) {
     md << "| U_mf, decreasing branch (Fig. 6, point E) | 1.8 m/s (Wen-Yu 1.77) | "
-       << fmt("%.2f m/s", sr.umf.umf) << " | " << fmt("%+.0f %%", 100.0 * (sr.umf.umf / 1.8 - 1.0))
-       << " |\n";
+       << pm(umf, "%.2f", " m/s") << " | " << fmt("%+.0f %%", 100.0 * (umf.mean / 1.8 - 1.0))
+       << "; " << within_two_sd(umf, 1.8) << " |\n";
   } else {
     md << "| U_mf, decreasing branch (Fig. 6) | 1.8 m/s | not found: " << sr.umf.why << " | |\n";
   }
@@ -274,20 +372,27 @@ int reproduce_command(const ReproduceArgs& a) {
      << fmt("%.0f Pa / ", sr.umf.plateau) << fmt("%.0f Pa", sr.bed_weight_per_area) << " | "
      << fmt("%+.0f %%", 100.0 * (sr.umf.plateau / sr.bed_weight_per_area - 1.0)) << " |\n";
   const auto& uj = ur.result.summary;
-  const double dp_uniform = num(uj, "dp_mean_pa");
+  const Figure dp_u = figure(summaries_of(urs), "dp_mean_pa");
+  const Figure dp_j = figure(summaries_of(prs), "dp_mean_pa");
   md << "| mean dp at 2.8 m/s, uniform distributor (model A: the bed carries its weight) | "
-     << "1.005 of W/A (measured, model.md 2.1) | " << fmt("%.0f Pa", dp_uniform)
-     << fmt(" (weight %.0f Pa)", weight) << " | " << fmt("%+.0f %%", 100.0 * (dp_uniform / weight - 1.0))
-     << " |\n";
+     << "1.005 of W/A (measured, model.md 2.1) | " << pm(dp_u, "%.0f", " Pa")
+     << fmt(" (weight %.0f Pa)", weight) << " | "
+     << fmt("%+.0f %%", 100.0 * (dp_u.mean / weight - 1.0)) << " |\n";
   md << "| mean dp at 2.8 m/s, central jet (eq 30, Fig. 8; dead zones rest on the floor) | "
-     << "below W/A (DPMFoam 0.77) | " << fmt("%.0f Pa", dp_mean)
-     << fmt(" = %.3f of W/A", dp_mean / weight) << " | "
-     << fmt("%.3f of the uniform bed's", dp_mean / dp_uniform) << " |\n";
+     << "below W/A (DPMFoam 0.77) | " << pm(dp_j, "%.0f", " Pa")
+     << fmt(" = %.3f of W/A", dp_j.mean / weight) << " | "
+     << fmt("%.3f of the uniform bed's", dp_j.mean / dp_u.mean) << " |\n";
+  md << "| dominant frequency of dp at 2.8 m/s, central jet (Welch) | | "
+     << pm(figure(summaries_of(prs), "dp_spectrum.dominant_frequency_refined_hz"), "%.2f", " Hz")
+     << " | |\n";
+  md << "| mean bed height after start-up, central jet | | "
+     << pm(figure(summaries_of(prs), "bed_height_mean_m"), "%.3f", " m") << " | |\n";
   md << "| start-up peak of dp (Fig. 8) | far above the stable level | "
      << fmt("%.0f Pa", num(pj, "dp_max_pa")) << fmt(" at t = %.3f s", num(pj, "dp_max_time_s"))
      << " | " << fmt("%.1f x the mean", num(pj, "dp_max_pa") / dp_mean) << " |\n";
-  md << "| max overlap ratio at start-up (Fig. 15) | 1.7 % | "
-     << fmt("%.2f %%", 100.0 * num(pj, "max_overlap_ratio")) << " | |\n";
+  const Figure overlap = figure(summaries_of(prs), "max_overlap_ratio");
+  md << "| max overlap ratio at start-up (Fig. 15) | 1.7 % | " << pm(overlap, "%.2f", " %", 100.0)
+     << " | " << within_two_sd(overlap, 0.017) << " |\n";
   md << "| max overlap ratio after start-up (Fig. 15) | well below 1 % | "
      << fmt("%.2f %%", 100.0 * num(pj, "max_overlap_ratio_after_startup")) << " | |\n";
   md << "| ideal case: a regular dp cycle (Fig. 17) | one bubble forms, grows to a slug and "
@@ -306,6 +411,9 @@ int reproduce_command(const ReproduceArgs& a) {
      << fmt("%.0f x faster", 9.0 * 3600.0 / wall_per_sim) << " |\n\n";
   md << "## Figures\n\n";
   md << "Fig. 6, the sweep: ![sweep](sweep/sweep.png)\n\n";
+  if (seeds.size() > 1)
+    md << "The sweeps of every packing, each faint, their mean bold, U_mf's mean +- one standard "
+       << "deviation: ![sweeps](sweep/sweep_ensemble.png)\n\n";
   md << "Fig. 8, dp against time at 2.8 m/s: ![dp](paper_bed/dp.png)\n\n";
   md << "Fig. 15, max overlap ratio: ![overlap](paper_bed/overlap.png)\n\n";
   md << "Figs 12-13, particles from the jet region: ![trajectory](paper_bed/trajectory.png)\n\n";

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -15,10 +16,14 @@
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
+#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/run_pool.hpp"
+#include "core/threads.hpp"
 #include "output/frames.hpp"
 #include "output/plots.hpp"
 #include "run/checkpoint.hpp"
+#include "run/ensemble.hpp"
 #include "run/live_folder.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
@@ -115,9 +120,135 @@ RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
   return r;
 }
 
+// `run --seeds`: the scene from each packing, side by side (one run a core), each member's usual
+// files under DIR/seeds/S/, the ensemble's summary.json in DIR (run/ensemble.hpp) and, with
+// --plots, DIR/dp.png with every seed's dp. An interrupt stops every member (status 130, no
+// ensemble summary); the first member that fails fails the ensemble (status 3) once the others
+// ended.
+int run_ensemble(const RunArgs& a) {
+  if (!a.resume.empty())
+    throw InputError("--seeds cannot be combined with --resume (resume each seeds/S run alone)");
+  if (a.output.frames || a.output.video || a.output.vtk || !a.output.montage.empty())
+    throw InputError(
+        "--seeds cannot be combined with --frames, --video, --vtk or --montage (pictures are of "
+        "one run: run one seed with --set particles.seed=S)");
+  if (a.scene.empty()) throw InputError("run: give a scene file (fluidbed run SCENE.toml)");
+  Settings s = load_scene(a.scene, a.overrides);
+  refuse_unsafe_scene(s);
+  s.threads = a.threads;
+  check_seeded_start(s);
+  const std::vector<std::uint64_t> seeds = parse_seeds(a.seeds, lattice_seed(s));
+  const std::string out = a.out.empty() ? default_out(a.scene) : a.out;
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw InputError("cannot create output folder " + out + ": " + ec.message());
+  fs::remove(fs::path(out) / "summary.json", ec);  // only a finished ensemble has one
+  {
+    std::ofstream scene_out(fs::path(out) / "scene.toml");
+    scene_out << "# the scene as run, every value resolved (each seed's: seeds/S/scene.toml)\n"
+              << to_toml(s);
+  }
+  std::vector<nlohmann::json> summaries(seeds.size());
+  std::vector<SeedTrace> traces(seeds.size());
+  std::vector<int> completed(seeds.size(), 0);
+  std::mutex print_mutex;
+  const InterruptGuard interrupts;
+  auto member = [&](std::size_t k) {
+    const std::uint64_t seed = seeds[k];
+    Settings sk = with_seed(s, seed);
+    const std::string dir = (fs::path(out) / "seeds" / std::to_string(seed)).string();
+    prepare_packed_bed(sk);
+    Simulation sim(sk);
+    std::unique_ptr<TrajectoryRecorder> tracks;
+    if (a.plots) {
+      const std::vector<int> ids =
+          a.track.empty()
+              ? nearest_particles(sim.dem().particles(), jet_region_points(sk.domain.width))
+              : parse_ids(a.track, sim.particle_count());
+      tracks =
+          std::make_unique<TrajectoryRecorder>(ids, sk.diagnostics.output_interval, sk.time.dt);
+    }
+    LiveRunFolder live(dir, sk.scene.name, a.bubbles, 1.0);
+    {
+      std::ofstream scene_out(fs::path(dir) / "scene.toml");
+      scene_out << "# the scene as run, every value resolved\n" << to_toml(sk);
+    }
+    RunOptions opt;
+    opt.until = a.until >= 0.0 ? a.until : sk.time.end;
+    opt.bubbles = a.bubbles;
+    if (tracks) opt.on_step = [&](const Simulation& x) { tracks->observe(x); };
+    opt.on_row = [&](const TimeseriesRow& row) { live.row(row); };
+    opt.stop = [] { return InterruptGuard::received() != 0; };
+    RunResult r;
+    try {
+      r = run_simulation(sim, opt);
+    } catch (const SimulationFailure& e) {
+      live.failed(e.what());
+      throw SimulationFailure("seed " + std::to_string(seed) + ": " + e.what());
+    }
+    if (!r.completed) {
+      live.interrupted(sim.time(), std::string("stopped by ") +
+                                       InterruptGuard::name(InterruptGuard::received()));
+      return;
+    }
+    write_run_outputs(dir, r);
+    live.completed(sim.time());
+    if (!sk.diagnostics.save_state.empty())
+      sim.save_state((fs::path(dir) / sk.diagnostics.save_state).string());
+    if (tracks)
+      plot_run(dir, r, tracks->tracks(), sk.domain.width, sk.domain.height, sim.has_gas());
+    traces[k].seed = seed;
+    for (const auto& row : r.rows) {
+      traces[k].t.push_back(row.t);
+      traces[k].dp.push_back(row.dp);
+    }
+    summaries[k] = r.summary;
+    completed[k] = 1;
+    std::lock_guard lock(print_mutex);
+    std::printf("seed %llu: t = %.4g s in %.3g s wall; wrote %s/\n",
+                static_cast<unsigned long long>(seed), sim.time(),
+                r.summary["wall_time_s"].get<double>(), dir.c_str());
+    std::fflush(stdout);
+  };
+  // One run a core, each on a.threads threads (0: one per core, so the seeds one after another).
+  const int cores = resolve_threads(0), per_run = resolve_threads(a.threads);
+  std::printf("%s: %zu seeds, %d side by side\n", s.scene.name.c_str(), seeds.size(),
+              std::max(1, cores / per_run));
+  std::fflush(stdout);
+  std::vector<std::function<void()>> tasks;
+  for (std::size_t k = 0; k < seeds.size(); ++k) tasks.push_back([&, k] { member(k); });
+  RunPool(std::max(1, cores / per_run)).run(tasks);
+  if (InterruptGuard::received() != 0 ||
+      std::find(completed.begin(), completed.end(), 0) != completed.end()) {
+    std::fprintf(stderr,
+                 "interrupted: each seed's timeseries so far is in %s/seeds/S/, no ensemble "
+                 "summary.json\n",
+                 out.c_str());
+    return 130;
+  }
+  nlohmann::json summary = ensemble_summary(summaries, seeds);
+  write_file_atomically((fs::path(out) / "summary.json").string(),
+                        [&](std::ostream& o) { o << summary.dump(2) << "\n"; });
+  const nlohmann::json& e = summary["ensemble"];
+  for (const char* key :
+       {"dp_mean_pa", "dp_spectrum.dominant_frequency_refined_hz", "bed_height_mean_m",
+        "bed_height_m", "solid_fraction", "bubbles.formed_per_s", "bubbles.mean_d_eq_m"})
+    if (e.contains(key)) std::printf("  %s: %s\n", key, ensemble_line(e[key]).c_str());
+  if (a.plots && s.gas.enabled) {
+    const std::string p = (fs::path(out) / "dp.png").string();
+    plot_dp_ensemble(p, traces, summary.value("bed_weight_per_area_pa", 0.0), s.scene.name);
+    std::printf("wrote %s\n", p.c_str());
+  }
+  std::printf("wrote %s/summary.json (the ensemble of %zu seeds) and %s/seeds/S/\n", out.c_str(),
+              seeds.size(), out.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int run_command(const RunArgs& given) {
+  if (!given.seeds.empty()) return run_ensemble(given);
   std::optional<Checkpoint> checkpoint;
   RunArgs a = given;
   if (!given.resume.empty()) {

@@ -1,4 +1,5 @@
 // fluidbed sweep: the paper's Fig. 6, both branches, and U_mf from the decreasing one.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,11 +9,12 @@
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
-#include "studies/study.hpp"
 #include "output/plots.hpp"
+#include "run/ensemble.hpp"
 #include "run/sweep.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"
+#include "studies/study.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -33,12 +35,103 @@ std::vector<double> parse_velocities(const std::string& list) {
   return v;
 }
 
+SweepOptions sweep_options(const SweepArgs& a) {
+  SweepOptions o;
+  if (!a.velocities.empty()) o.velocities = parse_velocities(a.velocities);
+  o.run_time = a.run_time;
+  o.averaging_start = a.averaging_start;
+  o.threads = a.threads;
+  o.out_dir = a.out.empty() ? "out/sweep" : a.out;
+  o.log = [](const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  };
+  return o;
+}
+
 }  // namespace
+
+// `sweep --seeds`: one sweep per packing, one after another, each with its runs side by side
+// (--threads), into DIR/seeds/S/ (each sweep's usual files); in DIR the ensemble's summary.json
+// (run/ensemble.hpp: umf_m_s and every other number as {mean, std, min, max, n}), sweep.csv
+// (the mean dp over the seeds at each velocity of each branch, with its spread) and sweep.png
+// (each seed's branches faint, the means bold, U_mf's mean +- one standard deviation).
+static int sweep_ensemble(const SweepArgs& a) {
+  Settings s = load_scene(a.scene, a.overrides);
+  refuse_unsafe_scene(s);
+  check_seeded_start(s);
+  const std::vector<std::uint64_t> seeds = parse_seeds(a.seeds, lattice_seed(s));
+  const SweepOptions base = sweep_options(a);
+  namespace fs = std::filesystem;
+  fs::create_directories(base.out_dir);
+  fs::remove(fs::path(base.out_dir) / "summary.json");  // only a finished ensemble has one
+  std::vector<SweepResult> results;
+  std::vector<nlohmann::json> summaries;
+  for (const std::uint64_t seed : seeds) {
+    SweepOptions o = base;
+    o.out_dir = (fs::path(base.out_dir) / "seeds" / std::to_string(seed)).string();
+    const std::string tag = "seed " + std::to_string(seed) + ": ";
+    o.log = [tag](const std::string& line) {
+      std::printf("%s%s\n", tag.c_str(), line.c_str());
+      std::fflush(stdout);
+    };
+    fs::create_directories(o.out_dir);
+    results.push_back(run_sweep(with_seed(s, seed), o));
+    write_sweep_outputs(results.back(), o, s.scene.name);
+    summaries.push_back(sweep_summary(results.back(), o, s.scene.name));
+    const UmfFit& f = results.back().umf;
+    if (f.ok)
+      std::printf("%sU_mf = %.3f m/s\n", tag.c_str(), f.umf);
+    else
+      std::printf("%sU_mf not found: %s\n", tag.c_str(), f.why.c_str());
+  }
+  nlohmann::json summary = ensemble_summary(summaries, seeds);
+  // The ensemble's curve: at each velocity of each branch, dp over the seeds whose run finished.
+  std::string csv = "branch,u_superficial,dp_mean,dp_std_over_seeds,dp_min,dp_max,seeds_ok\n";
+  for (const char* branch : {"up", "down"}) {
+    std::vector<double> us;
+    for (const auto& r : results)
+      for (const auto& p : std::string(branch) == "up" ? r.up : r.down)
+        if (std::find(us.begin(), us.end(), p.u) == us.end()) us.push_back(p.u);
+    std::sort(us.begin(), us.end());
+    for (double u : us) {
+      std::vector<nlohmann::json> at;
+      for (const auto& r : results)
+        for (const auto& p : std::string(branch) == "up" ? r.up : r.down)
+          if (p.u == u && p.ok) at.push_back({{"dp", p.dp_mean}});
+      char line[256];
+      if (at.empty()) {
+        std::snprintf(line, sizeof line, "%s,%.4f,,,,,0\n", branch, u);
+      } else {
+        const nlohmann::json e = ensemble_statistics(at)["dp"];
+        char sd[32] = "";  // empty with one seed
+        if (e["std"].is_number()) std::snprintf(sd, sizeof sd, "%.6g", e["std"].get<double>());
+        std::snprintf(line, sizeof line, "%s,%.4f,%.6g,%s,%.6g,%.6g,%zu\n", branch, u,
+                      e["mean"].get<double>(), sd, e["min"].get<double>(), e["max"].get<double>(),
+                      at.size());
+      }
+      csv += line;
+    }
+  }
+  const fs::path dir(base.out_dir);
+  write_file_atomically((dir / "sweep.csv").string(), [&](std::ostream& out) { out << csv; });
+  write_file_atomically((dir / "summary.json").string(),
+                        [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+  const nlohmann::json& e = summary["ensemble"];
+  plot_sweep_ensemble((dir / "sweep.png").string(), results,
+                      e.contains("umf_m_s") ? e["umf_m_s"] : nlohmann::json(nullptr), s.scene.name);
+  if (e.contains("umf_m_s"))
+    std::printf("U_mf (m/s) over %zu seeds: %s\n", seeds.size(),
+                ensemble_line(e["umf_m_s"], "%.3f").c_str());
+  else
+    std::printf("U_mf not found in any seed's sweep\n");
+  std::printf("wrote %s/summary.json, sweep.csv, sweep.png and seeds/S/\n", base.out_dir.c_str());
+  return 0;
+}
 
 void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene) {
   std::string csv = "branch,u_superficial,dp_mean,dp_std,status,wall_time_s,failure\n";
   char line[256];
-  nlohmann::json points = nlohmann::json::array();
   auto add = [&](const SweepPoint& p) {
     const bool run = p.ok || p.error.rfind("not run", 0) != 0;
     std::snprintf(line, sizeof line, "%s,%.4f,%.6g,%.6g,%s,%.3f,", p.branch.c_str(), p.u,
@@ -46,15 +139,29 @@ void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std:
                   p.ok ? "ok" : run ? "failed" : "not_run", p.wall_time);
     csv += line;
     csv += study::csv_text(p.error) + "\n";
-    points.push_back({{"branch", p.branch}, {"u_superficial", p.u}, {"ok", p.ok},
-                      {"dp_mean", p.dp_mean}, {"dp_std", p.dp_std}, {"error", p.error},
-                      {"wall_time_s", p.wall_time}});
   };
   for (const auto& p : r.up) add(p);
   for (const auto& p : r.down) add(p);
   const std::filesystem::path dir(o.out_dir);
   write_file_atomically((dir / "sweep.csv").string(), [&](std::ostream& out) { out << csv; });
+  const nlohmann::json j = sweep_summary(r, o, scene);
+  write_file_atomically((dir / "summary.json").string(),
+                        [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  plot_sweep((dir / "sweep.png").string(), r, scene);
+}
 
+nlohmann::json sweep_summary(const SweepResult& r, const SweepOptions& o,
+                             const std::string& scene) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const auto* branch : {&r.up, &r.down})
+    for (const auto& p : *branch)
+      points.push_back({{"branch", p.branch},
+                        {"u_superficial", p.u},
+                        {"ok", p.ok},
+                        {"dp_mean", p.dp_mean},
+                        {"dp_std", p.dp_std},
+                        {"error", p.error},
+                        {"wall_time_s", p.wall_time}});
   nlohmann::json j;
   j["scene"] = scene;
   j["umf_m_s"] = r.umf.ok ? nlohmann::json(r.umf.umf) : nlohmann::json(nullptr);
@@ -76,24 +183,14 @@ void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std:
   j["threads"] = o.threads;
   j["wall_time_s"] = r.wall_time;
   j["points"] = points;
-  write_file_atomically((dir / "summary.json").string(),
-                        [&](std::ostream& out) { out << j.dump(2) << "\n"; });
-  plot_sweep((dir / "sweep.png").string(), r, scene);
+  return j;
 }
 
 int sweep_command(const SweepArgs& a) {
+  if (!a.seeds.empty()) return sweep_ensemble(a);
   const Settings s = load_scene(a.scene, a.overrides);
   refuse_unsafe_scene(s);
-  SweepOptions o;
-  if (!a.velocities.empty()) o.velocities = parse_velocities(a.velocities);
-  o.run_time = a.run_time;
-  o.averaging_start = a.averaging_start;
-  o.threads = a.threads;
-  o.out_dir = a.out.empty() ? "out/sweep" : a.out;
-  o.log = [](const std::string& line) {
-    std::printf("%s\n", line.c_str());
-    std::fflush(stdout);
-  };
+  const SweepOptions o = sweep_options(a);
   std::filesystem::create_directories(o.out_dir);
   const SweepResult r = run_sweep(s, o);
   write_sweep_outputs(r, o, s.scene.name);

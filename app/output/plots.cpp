@@ -206,6 +206,136 @@ void plot_sweep(const std::string& path, const SweepResult& r, const std::string
 
 namespace {
 
+// Mean of dp over the seeds at each velocity of one branch (the runs that finished).
+chart::Series branch_mean(const std::vector<const std::vector<SweepPoint>*>& branches,
+                          const std::string& label) {
+  std::vector<std::pair<double, std::pair<double, int>>> acc;  // u -> (sum, n)
+  for (const auto* pts : branches)
+    for (const auto& p : *pts) {
+      if (!p.ok) continue;
+      auto it = std::find_if(acc.begin(), acc.end(), [&](const auto& a) { return a.first == p.u; });
+      if (it == acc.end()) {
+        acc.push_back({p.u, {p.dp_mean, 1}});
+      } else {
+        it->second.first += p.dp_mean;
+        ++it->second.second;
+      }
+    }
+  std::sort(acc.begin(), acc.end());
+  chart::Series s;
+  s.label = label;
+  s.mark = chart::Mark::LinePoints;
+  s.width = 3.0;
+  for (const auto& a : acc) {
+    s.x.push_back(a.first);
+    s.y.push_back(a.second.first / a.second.second);
+  }
+  return s;
+}
+
+// The decreasing branch with the shared top run, where it starts.
+std::vector<SweepPoint> closed_down(const SweepResult& r) {
+  std::vector<SweepPoint> down = r.down;
+  for (auto it = r.up.rbegin(); it != r.up.rend(); ++it)
+    if (it->ok) {
+      down.push_back(*it);
+      break;
+    }
+  return down;
+}
+
+}  // namespace
+
+void plot_sweep_ensemble(const std::string& path, const std::vector<SweepResult>& members,
+                         const nlohmann::json& umf_stats, const std::string& scene) {
+  chart::Chart c;
+  c.title = "Bed pressure drop against superficial gas velocity (" + scene + ", " +
+            std::to_string(members.size()) + " packings)";
+  c.x.label = "superficial gas velocity U (m/s)";
+  c.y.label = "mean bed pressure drop (Pa)";
+  c.x.min = 0.0;
+  c.y.min = 0.0;
+  // Each branch in one colour: bold for the mean, 35 % of it on white for each packing.
+  const chart::Rgb bold_up = chart::palette(0), bold_down = chart::palette(1);
+  auto faint = [](chart::Rgb colour) {
+    auto mix = [](std::uint8_t v) { return static_cast<std::uint8_t>(255 - (255 - v) * 35 / 100); };
+    return chart::Rgb{mix(colour.r), mix(colour.g), mix(colour.b)};
+  };
+  const chart::Rgb faint_up = faint(bold_up), faint_down = faint(bold_down);
+  const chart::Rgb umf_colour = chart::palette(2);
+  std::vector<std::vector<SweepPoint>> downs;
+  for (const auto& m : members) downs.push_back(closed_down(m));
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    for (int b = 0; b < 2; ++b) {
+      chart::Series s;
+      s.mark = chart::Mark::Line;
+      s.width = 1.0;
+      s.colour = b == 0 ? faint_up : faint_down;
+      s.dashed = b == 1;
+      if (k == 0) s.label = b == 0 ? "each packing, increasing" : "each packing, decreasing";
+      for (const auto& p : b == 0 ? members[k].up : downs[k])
+        if (p.ok) {
+          s.x.push_back(p.u);
+          s.y.push_back(p.dp_mean);
+        }
+      c.series.push_back(std::move(s));
+    }
+  }
+  std::vector<const std::vector<SweepPoint>*> ups, dns;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    ups.push_back(&members[k].up);
+    dns.push_back(&downs[k]);
+  }
+  chart::Series up = branch_mean(ups, "increasing U, mean over the packings");
+  up.colour = bold_up;
+  chart::Series dn = branch_mean(dns, "decreasing U, mean over the packings");
+  dn.colour = bold_down;
+  dn.dashed = true;
+  dn.filled = false;
+  dn.shape = chart::Shape::Square;
+  c.series.push_back(up);
+  c.series.push_back(dn);
+  if (!members.empty())
+    c.hlines.push_back(
+        {members.front().bed_weight_per_area, "bed weight / area", {90, 90, 90}, true, 1.5});
+  if (umf_stats.is_object() && umf_stats.contains("mean")) {
+    const double mean = umf_stats["mean"].get<double>();
+    char label[96];
+    if (umf_stats["std"].is_number()) {
+      const double sd = umf_stats["std"].get<double>();
+      std::snprintf(label, sizeof label, "Umf = %.2f +- %.2f m/s", mean, sd);
+      c.vlines.push_back({mean - sd, "", umf_colour, true, 1.0});
+      c.vlines.push_back({mean + sd, "", umf_colour, true, 1.0});
+    } else {
+      std::snprintf(label, sizeof label, "Umf = %.2f m/s (one packing)", mean);
+    }
+    c.vlines.push_back({mean, label, umf_colour, false, 2.5});
+  }
+  chart::render(c, 1200, 750, font()).write_png(path);
+}
+
+void plot_dp_ensemble(const std::string& path, const std::vector<SeedTrace>& traces,
+                      double bed_weight_per_area, const std::string& scene) {
+  chart::Chart c;
+  c.title = "Bed pressure drop against time (" + scene + ", " + std::to_string(traces.size()) +
+            " packings)";
+  c.x.label = "time (s)";
+  c.y.label = "pressure drop (Pa)";
+  for (std::size_t k = 0; k < traces.size(); ++k) {
+    chart::Series s;
+    s.label = "seed " + std::to_string(traces[k].seed);
+    s.x = traces[k].t;
+    s.y = traces[k].dp;
+    s.width = 1.0;
+    s.colour = chart::palette(k);
+    c.series.push_back(std::move(s));
+  }
+  c.hlines.push_back({bed_weight_per_area, "bed weight / area", {90, 90, 90}, true, 1.5});
+  chart::render(c, kSheetW, kSheetH, font()).write_png(path);
+}
+
+namespace {
+
 // Welch's power spectrum of dp (log scale), its dominant frequency marked.
 chart::Image spectrum_chart(const PowerSpectrum& sp) {
   chart::Chart c;

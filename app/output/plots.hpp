@@ -40,6 +40,23 @@ class TrajectoryRecorder {
 void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene);
 // sweep.csv, summary.json (with umf_m_s) and sweep.png in the sweep's output folder.
 void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene);
+// The sweep's summary.json as written by write_sweep_outputs.
+nlohmann::json sweep_summary(const SweepResult& r, const SweepOptions& o, const std::string& scene);
+
+// An ensemble of sweeps (`sweep --seeds`): each seed's two branches faint, the mean over the
+// seeds at each velocity bold, U_mf's ensemble mean as a line and mean +- one standard deviation
+// as the band's edges (no band when std is null: one seed).
+void plot_sweep_ensemble(const std::string& path, const std::vector<SweepResult>& members,
+                         const nlohmann::json& umf_stats, const std::string& scene);
+
+// One seed's dp against time in an ensemble (`run --seeds --plots`).
+struct SeedTrace {
+  std::uint64_t seed = 0;
+  std::vector<double> t, dp;  // s, Pa
+};
+// dp against time of every seed overlaid, the bed weight per area dashed.
+void plot_dp_ensemble(const std::string& path, const std::vector<SeedTrace>& traces,
+                      double bed_weight_per_area, const std::string& scene);
 
 // Writes DIR/dp.png (when the run has gas), DIR/overlap.png, DIR/dp_spectrum.png (when dp has a
 // spectrum), DIR/bubbles.png and DIR/mixing.png (with the bubble analysis) and, for the

@@ -45,6 +45,7 @@ std::string packed_bed_state(const Settings& bed,
     // Another scene packs the bed: its own packing, cached under its own settings.
     Settings other = load_scene(scene_path(bed, bed.particles.packing_scene));
     other.threads = bed.threads;
+    if (bed.packing_seed) other.particles.seed = *bed.packing_seed;  // an ensemble's member
     if (other.particles.count != bed.particles.count ||
         other.particles.diameter != bed.particles.diameter)
       throw InputError("particles.packing_scene " + bed.particles.packing_scene +

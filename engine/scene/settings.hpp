@@ -4,6 +4,7 @@
 // their unit, range and help, so the loader, the validator, the resolved-scene writer, `fluidbed
 // keys` and the tests all see the same names.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "scene/field_info.hpp"
@@ -160,6 +161,10 @@ struct Settings {
   // 0: one per core. The library default is 1 so that tests and parallel sweeps never
   // oversubscribe the cores; results are the same bits for any count.
   int threads = 1;
+  // An ensemble member's packing (`--seeds`, run/ensemble.hpp; not a TOML key): the lattice seed
+  // of the packing this bed starts from, also when particles.packing_scene makes it (whose own
+  // seed it then replaces). Unset: the packing scene's own seed.
+  std::optional<std::uint64_t> packing_seed;
 };
 
 // v(key, field, info) for every field of a section, in file order: the one table of the scene's
