@@ -8,6 +8,7 @@
 // than 5 %. The commands come from a seeded generator (FLUIDBED_SOAK_SEED; the seed is printed).
 #include <gtest/gtest.h>
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -39,8 +40,11 @@ double env_or(const char* name, double fallback) {
   return v && *v ? std::strtod(v, nullptr) : fallback;
 }
 
-// Resident set size of this process (bytes), from /proc/self/statm.
+// Resident set size of this process (bytes), from /proc/self/statm, after handing the pages
+// malloc holds free back to the system (malloc_trim): the memory in use, not the allocator's
+// high-water mark of transient buffers.
 double resident_bytes() {
+  malloc_trim(0);
   std::ifstream statm("/proc/self/statm");
   double pages_total = 0.0, pages_resident = 0.0;
   statm >> pages_total >> pages_resident;
@@ -100,6 +104,9 @@ TEST(ViewSoak, RandomCommandsForTenMinutesNeitherFailNorGrow) {
   const double settle = std::min(60.0, seconds / 10.0);  // the "first minute"
   double first_peak = 0.0, later_peak = 0.0;
   long commands = 0, resets = 0;
+  const double report_every = settle / 2.0;
+  double next_report = 0.0;
+  Clock::time_point next_sample{};  // the memory is read once a second
   std::string failure;
   while (elapsed() < seconds && failure.empty()) {
     const double r = unit(rng);
@@ -130,7 +137,14 @@ TEST(ViewSoak, RandomCommandsForTenMinutesNeitherFailNorGrow) {
       const app::EngineStatus st = engine.status();
       if (!st.error.empty()) failure = "engine failure: " + st.error;
       if (!st.refusal.empty()) failure = "refused command: " + st.refusal;
+      if (Clock::now() < next_sample) continue;
+      next_sample = Clock::now() + std::chrono::seconds(1);
       const double rss = resident_bytes();
+      if (elapsed() >= next_report) {  // the memory's course, for a failure's reader
+        std::printf("soak: t = %5.0f s  resident %.1f MB\n", elapsed(), rss / 1e6);
+        std::fflush(stdout);
+        next_report += report_every;
+      }
       (elapsed() < settle ? first_peak : later_peak) =
           std::max(elapsed() < settle ? first_peak : later_peak, rss);
     }
