@@ -98,6 +98,7 @@ struct GasStepReport {
   bool converged = false;             // mass_residual < tolerance
   double max_cfl = 0.0;               // max(|u|, |v|) dt / min(dx, dy) over the faces
   bool preconditioner_rebuilt = false;
+  int substeps = 1;  // > 1: the flow outran the step, which was taken again in this many parts
 };
 
 // Everything a bit-exact restart needs.
@@ -126,8 +127,16 @@ class GasSolver {
   // fx, fy: F per cell (N/m^3). The previous porosity gives d(eps)/dt. Throws SimulationFailure
   // (naming the cell and the time) when the CFL number exceeds 1, a value goes NaN, or SIMPLE
   // ends with a mass residual above 1000 x tolerance; below that, converged = false.
+  // A step that starts at a CFL number in (kSplitFromCfl, 1] but ends above 1 (the flow sped up
+  // within it: a jet opening its cavity, a raised inlet) is taken again from its start as up to
+  // kMaxSubsteps equal sub-steps of CFL about kSubstepCfl, with the same F and the porosity moving
+  // linearly to eps; it fails only if a sub-step is still above 1. The report sums the sub-steps.
   GasStepReport step(double dt, const std::vector<double>& eps, const std::vector<double>& fx,
                      const std::vector<double>& fy);
+
+  static constexpr double kSplitFromCfl = 0.5;
+  static constexpr double kSubstepCfl = 0.8;
+  static constexpr int kMaxSubsteps = 4;
 
   void set_superficial_velocity(double u);  // m/s, from the next step on
   // Porosity without a time derivative (the start from a packed bed).
@@ -190,6 +199,11 @@ class GasSolver {
     std::vector<double> d;     // m^2 s/kg, velocity correction per pressure-correction difference
   };
 
+  // One step of dt without the checks or the clock (step() adds them).
+  GasStepReport solve(double dt, const std::vector<double>& eps, const std::vector<double>& fx,
+                      const std::vector<double>& fy);
+  void check(const GasStepReport& rep, double dt) const;  // CFL above 1, SIMPLE far off: fail
+  void commit(double dt);                                 // the step becomes the history
   void prepare_step(double dt, const std::vector<double>& eps, const std::vector<double>& fx,
                     const std::vector<double>& fy);
   void face_porosities(const std::vector<double>& eps, std::vector<double>& eu,
@@ -233,6 +247,8 @@ class GasSolver {
   std::vector<double> m_u_, m_v_;         // kg/s, mass fluxes through the faces
   Coefficients cu_, cv_;
   std::vector<double> res_, pcorr_;  // per cell: continuity residual, pressure correction
+  int cfl_face_ = 0;                 // where the last solve's largest CFL number is
+  bool cfl_face_is_u_ = true;
 };
 
 }  // namespace fluidbed

@@ -36,6 +36,7 @@ void RunRecorder::gas_step_done(const CouplingDiagnostics& c) {
   simple_max_ = std::max(simple_max_, c.gas.simple_iterations);
   pressure_sum_ += c.gas.pressure_iterations_total;
   not_converged_ += c.gas.converged ? 0 : 1;
+  split_gas_steps_ += c.gas.substeps > 1 ? 1 : 0;
   residual_max_ = std::max(residual_max_, c.gas.mass_residual);
   cfl_max_ = std::max(cfl_max_, c.gas.max_cfl);
   third_law_max_ = std::max(third_law_max_, c.third_law_error);
@@ -190,6 +191,7 @@ void RunRecorder::add_gas_summary(const Simulation& sim, nlohmann::json& j) cons
   j["simple_iterations_max"] = simple_max_;
   j["pressure_iterations_mean"] = gas_steps_ > 0 ? static_cast<double>(pressure_sum_) / gs : 0.0;
   j["gas_steps_not_converged"] = not_converged_;
+  j["gas_steps_split"] = split_gas_steps_;
   j["mass_residual_max"] = residual_max_;
   j["max_cfl"] = cfl_max_;
   j["third_law_error_max"] = third_law_max_;
@@ -227,7 +229,7 @@ PowerSpectrum RunRecorder::dp_spectrum() const {
 }
 
 namespace {
-constexpr char kRecorderTag[8] = {'F', 'L', 'B', 'R', 'E', 'C', '0', '1'};
+constexpr char kRecorderTag[8] = {'F', 'L', 'B', 'R', 'E', 'C', '0', '2'};
 static_assert(std::is_trivially_copyable_v<TimeseriesRow>);
 static_assert(std::is_trivially_copyable_v<EnergyBudget> &&
               std::is_trivially_copyable_v<EnergyLedger>);
@@ -236,7 +238,8 @@ static_assert(std::is_trivially_copyable_v<EnergyBudget> &&
 void RunRecorder::save(std::ostream& out) const {
   out.write(kRecorderTag, sizeof kRecorderTag);
   for (std::int64_t v : {first_step_, last_step_, row_every_, dp_samples_, gas_steps_, simple_sum_,
-                         pressure_sum_, not_converged_, fluid_samples_, bed_height_samples_})
+                         pressure_sum_, not_converged_, split_gas_steps_, fluid_samples_,
+                         bed_height_samples_})
     put(out, v);
   for (double v : {startup_, max_overlap_, max_overlap_after_, ke_peak_, dp_sum_, dp_sq_, dp_max_,
                    dp_max_time_, residual_max_, cfl_max_, third_law_max_, fluid_fx_sum_,
@@ -262,7 +265,7 @@ void RunRecorder::restore(BinarySource& in) {
   const std::int64_t last_step = last_step_, row_every = row_every_;
   for (std::int64_t* v :
        {&first_step_, &last_step_, &row_every_, &dp_samples_, &gas_steps_, &simple_sum_,
-        &pressure_sum_, &not_converged_, &fluid_samples_, &bed_height_samples_})
+        &pressure_sum_, &not_converged_, &split_gas_steps_, &fluid_samples_, &bed_height_samples_})
     *v = in.get<std::int64_t>();
   for (double* v : {&startup_, &max_overlap_, &max_overlap_after_, &ke_peak_, &dp_sum_, &dp_sq_,
                     &dp_max_, &dp_max_time_, &residual_max_, &cfl_max_, &third_law_max_,

@@ -89,6 +89,7 @@ class RunRecorder {
   // Gas solver and coupling statistics.
   int last_gas_steps_ = 0;
   std::int64_t gas_steps_ = 0, simple_sum_ = 0, pressure_sum_ = 0, not_converged_ = 0;
+  std::int64_t split_gas_steps_ = 0;  // taken again as sub-steps (GasSolver::step)
   int simple_max_ = 0;
   double residual_max_ = 0.0, cfl_max_ = 0.0, third_law_max_ = 0.0;
   double fluid_fx_sum_ = 0.0, fluid_fy_sum_ = 0.0;

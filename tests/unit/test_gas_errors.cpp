@@ -163,3 +163,39 @@ TEST(GasErrors, SimpleThatStopsShortReportsOrFails) {
     EXPECT_FALSE(rep.converged);
   }
 }
+
+TEST(GasErrors, StepThatOutrunsItsCflIsTakenAgainAsSubsteps) {
+  // 9 m/s through the bottom, dt = 1 ms: the step starts at CFL 9 x 1e-3 / 0.01 = 0.9. Rows 10
+  // to 19 hold porosity 0.5, where the gas runs at 18 m/s: CFL 1.8 at the end of the step. The
+  // step is taken again as ceil(1.8 / 0.8) = 3 sub-steps, the same as three steps of dt / 3.
+  const GasGrid g;
+  GasParams p;
+  p.inlet = InletKind::Uniform;
+  p.superficial_velocity = 9.0;
+  std::vector<double> eps(g.cells(), 1.0);
+  for (int j = 10; j < 20; ++j)
+    for (int i = 0; i < g.nx; ++i) eps[g.index(i, j)] = 0.5;
+  const std::vector<double> zero(g.cells(), 0.0);
+  GasSolver split(g, p), thirds(g, p);
+  split.set_porosity(eps);
+  thirds.set_porosity(eps);
+  const GasStepReport rep = split.step(1e-3, eps, zero, zero);
+  EXPECT_EQ(rep.substeps, 3);
+  EXPECT_GT(rep.max_cfl, 0.5);
+  EXPECT_LE(rep.max_cfl, 1.0);
+  int iterations = 0;
+  for (int k = 0; k < 3; ++k) {
+    const GasStepReport r = thirds.step(1e-3 / 3, eps, zero, zero);
+    EXPECT_EQ(r.substeps, 1);
+    iterations += r.simple_iterations;
+  }
+  EXPECT_EQ(rep.simple_iterations, iterations);
+  EXPECT_EQ(split.state_hash(), thirds.state_hash());
+  EXPECT_NEAR(split.time(), 1e-3, 1e-15);
+
+  // A step that already starts above CFL 1 (dt = 2 ms here) is the caller's error: refused.
+  GasSolver too_long(g, p);
+  too_long.set_porosity(eps);
+  const std::string what = failure_of([&] { too_long.step(2e-3, eps, zero, zero); });
+  EXPECT_NE(what.find("CFL"), std::string::npos) << what;
+}
