@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
   bench->add_option("--peer", bench_peer, "also run the same work in another code: liggghts");
 
   auto* sweep = app.add_subcommand("sweep", "the paper's velocity sweep (Fig. 6) and U_mf");
-  sweep->add_option("scene", sweep_args.scene, "scene file (TOML)")->required();
+  sweep->add_option("scene", sweep_args.scene, "scene file (TOML); not with --resume");
   sweep->add_option("--set", sweep_args.overrides, "override a scene value: section.key=value")
       ->take_all()
       ->allow_extra_args(false);
@@ -136,6 +136,9 @@ int main(int argc, char** argv) {
   sweep->add_option("--seeds", sweep_args.seeds,
                     "one sweep per packing: N seeds from the scene's (s0, s0+1, ...) or a list "
                     "3,7,11; each in DIR/seeds/S/, U_mf's mean and spread in DIR/summary.json");
+  sweep->add_option("--resume", sweep_args.resume,
+                    "finish the sweep in folder DIR (interrupted or killed): finished runs are "
+                    "kept, a stopped run continues from its checkpoint");
 
   auto* reproduce = app.add_subcommand("reproduce", "every figure of the paper, with a report");
   reproduce->add_option("--out", reproduce_args.out, "output folder (default out/reproduce)");
@@ -148,6 +151,9 @@ int main(int argc, char** argv) {
                         "override a value in every scene: section.key=value")
       ->take_all()
       ->allow_extra_args(false);
+  reproduce->add_option("--resume", reproduce_args.resume,
+                        "finish the report in folder DIR (interrupted or killed): finished runs, "
+                        "sweep runs and studies are kept");
 
   // The viewer: a window with a control panel (README.md, "Viewer"); headless frames without one.
   auto* view = app.add_subcommand("view", "watch a scene live with a control panel (default scene: teaching)");
@@ -231,8 +237,18 @@ int main(int argc, char** argv) {
     if (*bench)
       return bench_peer.empty() ? fluidbed::app::bench_command(bench_args)
                                 : fluidbed::app::bench_peer_command(bench_args, bench_peer);
-    if (*sweep) return fluidbed::app::sweep_command(sweep_args);
-    if (*reproduce) return fluidbed::app::reproduce_command(reproduce_args);
+    if (*sweep) {
+      sweep_args.threads_given = sweep->count("--threads") > 0;
+      for (const char* o : {"scene", "--set", "--velocities", "--run-time", "--averaging-start",
+                            "--seeds"})
+        sweep_args.options_given = sweep_args.options_given || sweep->count(o) > 0;
+      return fluidbed::app::sweep_command(sweep_args);
+    }
+    if (*reproduce) {
+      for (const char* o : {"--quick", "--seeds", "--set"})
+        reproduce_args.options_given = reproduce_args.options_given || reproduce->count(o) > 0;
+      return fluidbed::app::reproduce_command(reproduce_args);
+    }
     if (*exporter) return fluidbed::app::export_command(export_args);
     if (*study) return fluidbed::app::study_command(study_args);
     if (*view) {

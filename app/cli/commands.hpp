@@ -54,6 +54,9 @@ struct SweepArgs {
   int threads = 2;               // runs side by side
   std::string out;
   std::string seeds;  // sweep --seeds: one sweep per packing (run/ensemble.hpp); empty: one
+  std::string resume;          // sweep --resume DIR: finish the sweep in DIR (cli/sweep.cpp)
+  bool threads_given = false;  // --threads on the command line
+  bool options_given = false;  // a scene, --set, --velocities, --run-time, --averaging-start or --seeds
 };
 
 struct ReproduceArgs {
@@ -62,6 +65,8 @@ struct ReproduceArgs {
   bool quick = false;  // every figure at lower fidelity, in minutes
   int threads = 1;
   std::string seeds;  // packings (run/ensemble.hpp); empty: 3, with --quick 1
+  std::string resume;          // reproduce --resume DIR: finish the report in DIR
+  bool options_given = false;  // --quick, --seeds or --set on the command line
 };
 
 struct CheckArgs {

@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "core/atomic_file.hpp"
 #include "core/run_pool.hpp"
 #include "core/threads.hpp"
@@ -34,6 +36,29 @@ struct TrackedRun {
   double wall = 0.0;
 };
 
+// An interrupt (SIGINT, SIGTERM) stopped a run or a sweep of the report.
+struct Interrupted {};
+
+// A run of the report that finished leaves this beside its files (its wall time); `--resume`
+// reads such a run back instead of running it again.
+constexpr const char* kRunDone = "reproduce-run.json";
+// Whether `reproduce --resume` is finishing a report (set once, before any run).
+bool resuming = false;
+
+std::optional<TrackedRun> finished_run(const fs::path& dir) {
+  if (!resuming) return std::nullopt;
+  std::ifstream done(dir / kRunDone), summary(dir / "summary.json");
+  if (!done || !summary) return std::nullopt;
+  try {
+    TrackedRun r;
+    r.wall = nlohmann::json::parse(done).at("wall_s").get<double>();
+    r.result.summary = nlohmann::json::parse(summary);
+    return r;
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;  // run it again
+  }
+}
+
 TrackedRun run_tracked(Settings s, double until,
                        const std::vector<std::pair<double, double>>& track_at,
                        const fs::path& dir, const std::vector<double>& montage) {
@@ -52,12 +77,14 @@ TrackedRun run_tracked(Settings s, double until,
   RunOptions opt;
   opt.until = until;
   opt.bubbles = true;  // bubbles.csv, mixing.csv and their figures beside every run
+  opt.stop = [] { return InterruptGuard::received() != 0; };
   opt.on_step = [&](const Simulation& m) {
     recorder.observe(m);
     if (pictures) pictures->observe(m);
   };
   const auto start = std::chrono::steady_clock::now();
   out.result = run_simulation(sim, opt);
+  if (!out.result.completed) throw Interrupted{};
   if (pictures) pictures->finish();
   out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.tracks = recorder.tracks();
@@ -71,10 +98,14 @@ TrackedRun run_tracked(Settings s, double until,
 TrackedRun run_into(const fs::path& dir, const Settings& s, double until,
                     const std::vector<std::pair<double, double>>& track_at = {},
                     const std::vector<double>& montage = {}) {
+  if (std::optional<TrackedRun> done = finished_run(dir)) return *done;
   fs::create_directories(dir);
   TrackedRun r = run_tracked(s, until, track_at, dir, montage);
   write_run_outputs(dir.string(), r.result);
   plot_run(dir.string(), r.result, r.tracks, s.domain.width, s.domain.height, true);
+  write_file_atomically((dir / kRunDone).string(), [&](std::ostream& o) {
+    o << nlohmann::json{{"wall_s", r.wall}}.dump() << "\n";
+  });
   return r;
 }
 
@@ -235,12 +266,67 @@ std::vector<nlohmann::json> summaries_of(const std::vector<TrackedRun>& runs) {
   return s;
 }
 
-}  // namespace
+// How the report was started (DIR/reproduce.json), for `reproduce --resume DIR`.
+nlohmann::json reproduce_json(const ReproduceArgs& a) {
+  return {{"format", 1},      {"quick", a.quick},     {"seeds", a.seeds},
+          {"overrides", a.overrides}, {"threads", a.threads}};
+}
 
-int reproduce_command(const ReproduceArgs& a) {
+// `reproduce --resume DIR`: the arguments from DIR/reproduce.json (only --threads beside it).
+ReproduceArgs resumed_reproduce_args(const ReproduceArgs& given) {
+  const std::string head = "cannot resume " + given.resume + ": ";
+  if (given.options_given)
+    throw InputError(head + "a resumed report takes --quick, --seeds and --set from "
+                            "DIR/reproduce.json (give only --resume DIR and, if wanted, --threads)");
+  if (!given.out.empty() &&
+      fs::absolute(given.out).lexically_normal() != fs::absolute(given.resume).lexically_normal())
+    throw InputError(head + "--out " + given.out + " is not the report's folder");
+  if (!fs::is_directory(given.resume)) throw InputError(head + "not a folder");
+  std::ifstream in(fs::path(given.resume) / "reproduce.json");
+  if (!in) throw InputError(head + "no report to resume there (no reproduce.json)");
+  ReproduceArgs a = given;
+  a.out = given.resume;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    if (j.at("format").get<int>() != 1) throw InputError(head + "reproduce.json of another format");
+    a.quick = j.at("quick").get<bool>();
+    a.seeds = j.at("seeds").get<std::string>();
+    a.overrides = j.at("overrides").get<std::vector<std::string>>();
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(head + "its reproduce.json does not say how the report was started");
+  }
+  return a;
+}
+
+// A new report in a folder that held another: what a later --resume could mistake for this
+// report's finished runs and studies goes.
+void forget_finished_parts(const fs::path& out) {
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (auto it = fs::recursive_directory_iterator(out, ec); !ec && it != fs::end(it);
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name == kRunDone || (name == "report.json" && it->path().parent_path().parent_path().filename() == "studies"))
+      stale.push_back(it->path());
+  }
+  for (const auto& p : stale) fs::remove(p, ec);
+}
+
+int reproduce_report(const ReproduceArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string out = a.out.empty() ? "out/reproduce" : a.out;
   fs::create_directories(out);
+  resuming = !a.resume.empty();
+  if (!resuming) {
+    forget_finished_parts(out);
+    write_file_atomically((fs::path(out) / "reproduce.json").string(),
+                          [&](std::ostream& o) { o << reproduce_json(a).dump(2) << "\n"; });
+  }
+  fs::remove(fs::path(out) / "report.md");  // only a finished report is there
+  // An interrupt stops the runs and the sweeps at the end of a step (the sweeps with their
+  // checkpoints); the studies after them keep the default handlers (an interrupt ends the
+  // program, and --resume runs the study it was in again).
+  std::optional<InterruptGuard> interrupts(std::in_place);
   const std::string scenes = asset_dir() + "/scenes/";
   auto log = [](const std::string& line) {
     std::printf("%s\n", line.c_str());
@@ -257,6 +343,9 @@ int reproduce_command(const ReproduceArgs& a) {
   so.threads = 2;
   so.out_dir = (fs::path(out) / "sweep").string();
   so.log = log;
+  so.resume = resuming;
+  so.stop = [] { return InterruptGuard::received() != 0; };
+  so.command = reproduce_json(a);
   const double averaging = a.quick ? 0.5 : 1.0;
 
   // Every scene refused before the first step, not after the runs before it.
@@ -313,6 +402,7 @@ int reproduce_command(const ReproduceArgs& a) {
     if (k > 0) o.out_dir = (fs::path(so.out_dir) / "seeds" / std::to_string(seeds[k])).string();
     fs::create_directories(o.out_dir);
     srs.push_back(run_sweep(with_seed(sweep_scene, seeds[k]), o));
+    if (srs.back().interrupted) throw Interrupted{};
     write_sweep_outputs(srs.back(), o, sweep_scene.scene.name);
     sweep_summaries.push_back(sweep_summary(srs.back(), o, sweep_scene.scene.name));
   }
@@ -330,13 +420,21 @@ int reproduce_command(const ReproduceArgs& a) {
 
   // 4. The studies (speed against accuracy, stability, model choices): tiny with --quick. They
   // use their own scenes; the --set overrides above do not apply to them.
+  if (InterruptGuard::received() != 0) throw Interrupted{};
+  interrupts.reset();
   std::vector<study::Report> studies;
   for (const study::Info& info : study::all_studies()) {
-    log("== study " + std::string(info.name));
     study::Options so_study;
     so_study.out = (fs::path(out) / "studies" / info.name).string();
     so_study.size = a.quick ? study::Size::Tiny : study::Size::Full;
     so_study.log = log;
+    if (resuming)
+      if (std::optional<study::Report> done = study::finished_study(so_study.out, so_study.size)) {
+        log("== study " + std::string(info.name) + ": finished before, kept");
+        studies.push_back(*done);
+        continue;
+      }
+    log("== study " + std::string(info.name));
     studies.push_back(study::run_study(info, so_study));
   }
 
@@ -459,6 +557,20 @@ int reproduce_command(const ReproduceArgs& a) {
   write_file_atomically(report, [&](std::ostream& o) { o << md.str(); });
   log("wrote " + report);
   return 0;
+}
+
+}  // namespace
+
+int reproduce_command(const ReproduceArgs& given) {
+  try {
+    return reproduce_report(given.resume.empty() ? given : resumed_reproduce_args(given));
+  } catch (const Interrupted&) {
+    const std::string out = given.resume.empty() ? (given.out.empty() ? "out/reproduce" : given.out)
+                                                 : given.resume;
+    std::fprintf(stderr, "interrupted (%s); resume with: fluidbed reproduce --resume %s\n",
+                 InterruptGuard::name(InterruptGuard::received()), out.c_str());
+    return 130;
+  }
 }
 
 }  // namespace fluidbed::app

@@ -54,24 +54,6 @@ std::vector<int> parse_ids(const std::string& list, std::size_t count) {
   return ids;
 }
 
-// The first line where two resolved scenes differ, as "[section] key = value" of each.
-std::string first_difference(const std::string& now, const std::string& was) {
-  std::istringstream a(now), b(was);
-  std::string la, lb, section;
-  while (true) {
-    const bool ga = static_cast<bool>(std::getline(a, la)),
-               gb = static_cast<bool>(std::getline(b, lb));
-    if (!ga && !gb) return "";
-    if (!ga) la.clear();
-    if (!gb) lb.clear();
-    if (la != lb) {
-      auto bare = [](std::string l) { return l.substr(0, l.find("  #")); };
-      return section + " " + bare(la) + ", was " + bare(lb);
-    }
-    if (!la.empty() && la[0] == '[') section = la;
-  }
-}
-
 // How the run was started, as its checkpoint keeps it (run/checkpoint.hpp, options.json).
 nlohmann::json run_options(const RunArgs& a, double until) {
   nlohmann::json o;

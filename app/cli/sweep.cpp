@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "output/plots.hpp"
@@ -35,6 +36,51 @@ std::vector<double> parse_velocities(const std::string& list) {
   return v;
 }
 
+// How the sweep was started, kept in DIR/sweep.json for `sweep --resume DIR`.
+nlohmann::json sweep_command_json(const SweepArgs& a) {
+  return {{"scene", std::filesystem::absolute(a.scene).lexically_normal().string()},
+          {"overrides", a.overrides},
+          {"velocities", a.velocities},
+          {"run_time_s", a.run_time},
+          {"averaging_start_s", a.averaging_start},
+          {"threads", a.threads},
+          {"seeds", a.seeds}};
+}
+
+// `sweep --resume DIR`: the sweep's arguments from DIR/sweep.json; only --threads (which changes
+// no result) may be given beside it.
+SweepArgs resumed_sweep_args(const SweepArgs& given) {
+  const std::string head = "cannot resume " + given.resume + ": ";
+  if (given.options_given)
+    throw InputError(head + "a resumed sweep takes its scene and options from DIR/sweep.json "
+                            "(give only --resume DIR and, if wanted, --threads)");
+  namespace fs = std::filesystem;
+  if (!given.out.empty() &&
+      fs::absolute(given.out).lexically_normal() != fs::absolute(given.resume).lexically_normal())
+    throw InputError(head + "--out " + given.out + " is not the sweep's folder");
+  const nlohmann::json j = read_sweep_identity(given.resume);
+  SweepArgs a = given;
+  a.out = given.resume;
+  try {
+    const nlohmann::json& c = j.at("command");
+    a.scene = c.at("scene").get<std::string>();
+    a.overrides = c.at("overrides").get<std::vector<std::string>>();
+    a.velocities = c.at("velocities").get<std::string>();
+    a.run_time = c.at("run_time_s").get<double>();
+    a.averaging_start = c.at("averaging_start_s").get<double>();
+    a.seeds = c.at("seeds").get<std::string>();
+    if (!given.threads_given) a.threads = c.at("threads").get<int>();
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(head + "its sweep.json does not say how the sweep was started");
+  }
+  return a;
+}
+
+void say_interrupted(const std::string& out) {
+  std::fprintf(stderr, "interrupted (%s); resume with: fluidbed sweep --resume %s\n",
+               InterruptGuard::name(InterruptGuard::received()), out.c_str());
+}
+
 SweepOptions sweep_options(const SweepArgs& a) {
   SweepOptions o;
   if (!a.velocities.empty()) o.velocities = parse_velocities(a.velocities);
@@ -46,6 +92,9 @@ SweepOptions sweep_options(const SweepArgs& a) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   };
+  o.resume = !a.resume.empty();
+  o.stop = [] { return InterruptGuard::received() != 0; };
+  o.command = sweep_command_json(a);
   return o;
 }
 
@@ -65,6 +114,12 @@ static int sweep_ensemble(const SweepArgs& a) {
   namespace fs = std::filesystem;
   fs::create_directories(base.out_dir);
   fs::remove(fs::path(base.out_dir) / "summary.json");  // only a finished ensemble has one
+  if (!base.resume) {
+    const nlohmann::json top = {{"format", 1}, {"command", base.command}};
+    write_file_atomically((fs::path(base.out_dir) / "sweep.json").string(),
+                          [&](std::ostream& out) { out << top.dump(2) << "\n"; });
+  }
+  const InterruptGuard interrupts;
   std::vector<SweepResult> results;
   std::vector<nlohmann::json> summaries;
   for (const std::uint64_t seed : seeds) {
@@ -77,6 +132,10 @@ static int sweep_ensemble(const SweepArgs& a) {
     };
     fs::create_directories(o.out_dir);
     results.push_back(run_sweep(with_seed(s, seed), o));
+    if (results.back().interrupted) {
+      say_interrupted(base.out_dir);
+      return 130;
+    }
     write_sweep_outputs(results.back(), o, s.scene.name);
     summaries.push_back(sweep_summary(results.back(), o, s.scene.name));
     const UmfFit& f = results.back().umf;
@@ -186,13 +245,24 @@ nlohmann::json sweep_summary(const SweepResult& r, const SweepOptions& o,
   return j;
 }
 
-int sweep_command(const SweepArgs& a) {
+int sweep_command(const SweepArgs& given) {
+  SweepArgs a = given;
+  if (!given.resume.empty())
+    a = resumed_sweep_args(given);
+  else if (a.scene.empty())
+    throw InputError("sweep: give a scene file (fluidbed sweep SCENE.toml) or --resume DIR");
   if (!a.seeds.empty()) return sweep_ensemble(a);
   const Settings s = load_scene(a.scene, a.overrides);
   refuse_unsafe_scene(s);
   const SweepOptions o = sweep_options(a);
   std::filesystem::create_directories(o.out_dir);
+  std::filesystem::remove(std::filesystem::path(o.out_dir) / "summary.json");  // only a finished sweep has one
+  const InterruptGuard interrupts;
   const SweepResult r = run_sweep(s, o);
+  if (r.interrupted) {
+    say_interrupted(o.out_dir);
+    return 130;
+  }
   write_sweep_outputs(r, o, s.scene.name);
   if (r.umf.ok)
     std::printf("U_mf = %.3f m/s (plateau %.0f Pa; bed weight per area %.0f Pa)\n", r.umf.umf,

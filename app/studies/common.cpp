@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <stdexcept>
 
@@ -84,7 +86,34 @@ Report run_study(const Info& info, const Options& o) {
   md += "## What to choose\n\n" + r.advice + "\n\n## Charts\n\n";
   for (const auto& c : r.charts) md += "![" + c + "](" + c + ")\n\n";
   write_text((fs::path(o.out) / "summary.md").string(), md);
+  const nlohmann::json j = {{"name", r.name},     {"title", r.title},     {"charts", r.charts},
+                            {"findings", r.findings}, {"advice", r.advice}, {"points", r.points},
+                            {"failed", r.failed}, {"wall_time_s", r.wall_time},
+                            {"size", o.size == Size::Tiny ? "tiny" : "full"}};
+  write_text((fs::path(o.out) / "report.json").string(), j.dump(2) + "\n");
   return r;
+}
+
+std::optional<Report> finished_study(const std::string& dir, Size size) {
+  std::ifstream in(fs::path(dir) / "report.json");
+  if (!in) return std::nullopt;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    if (j.at("size").get<std::string>() != (size == Size::Tiny ? "tiny" : "full"))
+      return std::nullopt;
+    Report r;
+    r.name = j.at("name").get<std::string>();
+    r.title = j.at("title").get<std::string>();
+    r.charts = j.at("charts").get<std::vector<std::string>>();
+    r.findings = j.at("findings").get<std::string>();
+    r.advice = j.at("advice").get<std::string>();
+    r.points = j.at("points").get<int>();
+    r.failed = j.at("failed").get<int>();
+    r.wall_time = j.at("wall_time_s").get<double>();
+    return r;
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
 }
 
 // kg: 2700 kg/m3 x pi d^3 / 6, d = 4 mm.

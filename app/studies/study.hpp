@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,10 @@ const Info* find_study(const std::string& name);
 // Runs a study (creating its folder, timing it, writing summary.md); throws InputError for bad
 // options.
 Report run_study(const Info& info, const Options& o);
+// The report a finished study left in its folder (DIR/report.json, written last by run_study
+// with the size it ran at): `reproduce --resume` keeps it instead of running the study again.
+// Nothing when there is none, it is unreadable, or it is of another size.
+std::optional<Report> finished_study(const std::string& dir, Size size);
 
 // ---- shared by the studies ----------------------------------------------------------------
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <atomic>
 #include <memory>
@@ -12,16 +13,22 @@
 #include <thread>
 #include <numbers>
 #include <numeric>
+#include <optional>
 
+#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/run_pool.hpp"
+#include "run/checkpoint.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
+#include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed {
 namespace {
+
+namespace fs = std::filesystem;
 
 std::string point_name(const std::string& branch, double u) {
   char buf[64];
@@ -29,10 +36,55 @@ std::string point_name(const std::string& branch, double u) {
   return buf;
 }
 
-// One run of the sweep: from the scene's start (up) or from `from_state` (down).
+fs::path point_dir(const SweepOptions& o, const std::string& branch, double u) {
+  return fs::path(o.out_dir) / "runs" / point_name(branch, u);
+}
+
+// A finished point's row (point.json): what a resumed sweep reads back instead of running it.
+nlohmann::json point_json(const SweepPoint& p) {
+  return {{"branch", p.branch},       {"u_superficial", p.u},  {"ok", p.ok},
+          {"error", p.error},         {"dp_mean", p.dp_mean},  {"dp_std", p.dp_std},
+          {"wall_time_s", p.wall_time}, {"start_hash", p.start_hash}, {"end_hash", p.end_hash}};
+}
+
+// The point.json of `dir`, if there is one that belongs to this point and, for a finished run,
+// its final state is there too.
+std::optional<SweepPoint> read_point(const fs::path& dir, const std::string& branch, double u) {
+  const fs::path file = dir / "point.json";
+  if (!fs::is_regular_file(file)) return std::nullopt;
+  SweepPoint p;
+  try {
+    std::ifstream in(file);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    p.branch = j.at("branch").get<std::string>();
+    p.u = j.at("u_superficial").get<double>();
+    p.ok = j.at("ok").get<bool>();
+    p.error = j.at("error").get<std::string>();
+    p.dp_mean = j.at("dp_mean").get<double>();
+    p.dp_std = j.at("dp_std").get<double>();
+    p.wall_time = j.at("wall_time_s").get<double>();
+    p.start_hash = j.at("start_hash").get<std::uint64_t>();
+    p.end_hash = j.at("end_hash").get<std::uint64_t>();
+  } catch (const std::exception&) {
+    throw InputError(file.string() + ": not a sweep point's record");
+  }
+  if (p.branch != branch || p.u != u)
+    throw InputError(file.string() + ": the record of another run of the sweep");
+  if (p.ok) {
+    p.state_path = (dir / "final.state").string();
+    if (!fs::is_regular_file(p.state_path)) return std::nullopt;  // run it again
+  }
+  p.resumed = true;
+  return p;
+}
+
+// One run of the sweep: from the scene's start (up) or from `from_state` (down). Resumed, a
+// recorded run is read back and a checkpointed one continues.
 SweepPoint run_point(const Settings& scene, const SweepOptions& o, const std::string& branch,
                      double u, const std::string& from_state) {
-  namespace fs = std::filesystem;
+  const fs::path dir = point_dir(o, branch, u);
+  if (o.resume)
+    if (std::optional<SweepPoint> done = read_point(dir, branch, u)) return *done;
   SweepPoint pt;
   pt.branch = branch;
   pt.u = u;
@@ -43,13 +95,36 @@ SweepPoint run_point(const Settings& scene, const SweepOptions& o, const std::st
   s.time.end = o.run_time;
   s.diagnostics.averaging_start = o.averaging_start;
   s.diagnostics.save_state.clear();
+  const std::string scene_toml = to_toml(s);
   const auto start = std::chrono::steady_clock::now();
-  const fs::path dir = fs::path(o.out_dir) / "runs" / point_name(branch, u);
+  double wall_before = 0.0;
   try {
     Simulation sim(s);
     if (!from_state.empty()) sim.continue_from(from_state);
     pt.start_hash = sim.dem().configuration_hash();
-    const RunResult r = run_simulation(sim, RunOptions{});
+    RunOptions ro;
+    std::optional<Checkpoint> c;
+    if (o.resume && fs::is_directory(dir / "checkpoint")) {
+      c = read_checkpoint(dir.string());
+      if (c->scene_toml != scene_toml)
+        throw InputError("cannot resume " + dir.string() + ": its checkpoint is of another scene (" +
+                         first_difference(scene_toml, c->scene_toml) + ")");
+      restore_simulation(*c, sim);
+      ro.restore = [&](RunRecorder& rec) { restore_recorder(*c, rec); };
+      ro.wall_before = wall_before = c->wall;
+      pt.resumed = true;
+    }
+    ro.stop = o.stop;
+    ro.checkpoint = [&](const Simulation& x, const RunRecorder& rec, double wall) {
+      write_checkpoint(dir.string(), x, rec, wall, scene_toml,
+                       o.command.is_object() ? o.command : nlohmann::json::object(), false);
+    };
+    ro.checkpoint_interval = o.checkpoint_interval;
+    const RunResult r = run_simulation(sim, ro);
+    if (!r.completed) {
+      pt.interrupted = true;
+      return pt;
+    }
     write_run_outputs(dir.string(), r);
     pt.dp_mean = r.summary.value("dp_mean_pa", 0.0);
     pt.dp_std = r.summary.value("dp_std_pa", 0.0);
@@ -61,7 +136,11 @@ SweepPoint run_point(const Settings& scene, const SweepOptions& o, const std::st
     pt.error = e.what();
   }
   pt.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fs::create_directories(dir);
+  write_file_atomically((dir / "point.json").string(),
+                        [&](std::ostream& out) { out << point_json(pt).dump(2) << "\n"; });
+  remove_checkpoint(dir.string());
   return pt;
 }
 
@@ -127,6 +206,35 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   const auto start = std::chrono::steady_clock::now();
   // Pack once before the runs share the cache.
   prepare_packed_bed(scene, o.log);
+  // The folder's sweep: the same one when resumed (a folder with no sweep.json yet has nothing
+  // to resume), a new one otherwise, whose runs' records and checkpoints from before are removed.
+  const nlohmann::json identity = sweep_identity(scene, o);
+  const fs::path identity_file = fs::path(o.out_dir) / "sweep.json";
+  if (o.resume && fs::exists(identity_file)) {
+    const nlohmann::json was = read_sweep_identity(o.out_dir);
+    const std::string head = "cannot resume " + o.out_dir + ": ";
+    const std::string scene_change =
+        first_difference(identity["scene_toml"].get<std::string>(),
+                         was.value("scene_toml", std::string()));
+    if (!scene_change.empty())
+      throw InputError(head + "the scene is not the one the sweep started with (" + scene_change +
+                       ")");
+    for (const char* key : {"velocities_m_s", "run_time_s", "averaging_start_s"})
+      if (identity[key] != was.value(key, nlohmann::json()))
+        throw InputError(head + "the sweep's " + key + " " + identity[key].dump() + " differ from " +
+                         was.value(key, nlohmann::json()).dump());
+  } else {
+    fs::create_directories(o.out_dir);
+    for (const char* branch : {"up", "down"})
+      for (double u : o.velocities) {
+        std::error_code ec;
+        fs::remove(point_dir(o, branch, u) / "point.json", ec);
+        remove_checkpoint(point_dir(o, branch, u).string());
+      }
+    write_file_atomically(identity_file.string(),
+                          [&](std::ostream& out) { out << identity.dump(2) << "\n"; });
+  }
+  auto stopped = [&] { return o.stop && o.stop(); };
   const std::size_t n = o.velocities.size();
   SweepResult result;
   result.up.resize(n);
@@ -136,8 +244,9 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
     if (!o.log) return;
     char line[256];
     if (p.ok)
-      std::snprintf(line, sizeof line, "%-4s U = %.3f m/s: dp = %.0f +- %.0f Pa (%.0f s)",
-                    p.branch.c_str(), p.u, p.dp_mean, p.dp_std, p.wall_time);
+      std::snprintf(line, sizeof line, "%-4s U = %.3f m/s: dp = %.0f +- %.0f Pa (%.0f s%s)",
+                    p.branch.c_str(), p.u, p.dp_mean, p.dp_std, p.wall_time,
+                    p.resumed ? ", resumed" : "");
     else
       std::snprintf(line, sizeof line, "%-4s U = %.3f m/s: failed: %s", p.branch.c_str(), p.u,
                     p.error.c_str());
@@ -155,8 +264,14 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   auto run_up = [&](std::size_t k) {
     int expected = 0;
     if (!state[k].compare_exchange_strong(expected, 1)) return false;
-    result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
-    report(result.up[k]);
+    if (stopped()) {
+      result.up[k].branch = "up";
+      result.up[k].u = o.velocities[k];
+      result.up[k].interrupted = true;
+    } else {
+      result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
+      if (!result.up[k].interrupted) report(result.up[k]);
+    }
     state[k] = 2;
     return true;
   };
@@ -165,6 +280,7 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
     for (std::size_t k = n; k-- > 0;) {
       if (!run_up(k))
         while (state[k].load() != 2) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (result.up[k].interrupted) return;
       if (result.up[k].ok) {
         top = k;
         break;
@@ -182,7 +298,12 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
       result.down[k].error = "not run: above the highest velocity whose run finished";
     const SweepPoint* from = &result.up[top];
     for (std::size_t k = top; k-- > 0;) {
+      if (stopped()) {
+        result.down[k].interrupted = true;
+        return;
+      }
       result.down[k] = run_point(scene, o, "down", o.velocities[k], from->state_path);
+      if (result.down[k].interrupted) return;
       report(result.down[k]);
       if (result.down[k].ok) from = &result.down[k];
     }
@@ -191,6 +312,10 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   std::vector<std::function<void()>> tasks = {down_chain};
   for (std::size_t k = 0; k + 1 < n; ++k) tasks.push_back([&, k] { run_up(k); });
   RunPool(o.threads).run(tasks);
+  for (const auto* branch : {&result.up, &result.down})
+    for (const auto& p : *branch) result.interrupted = result.interrupted || p.interrupted;
+  // A stopped sweep has no result: only its runs' records and checkpoints, for a resume.
+  if (result.interrupted) return result;
 
   // Umf from the decreasing branch, with the shared top point.
   std::vector<double> us, dps;
@@ -214,6 +339,34 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   result.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+nlohmann::json sweep_identity(const Settings& scene, const SweepOptions& options) {
+  std::vector<double> velocities =
+      options.velocities.empty() ? default_sweep_velocities(scene) : options.velocities;
+  std::sort(velocities.begin(), velocities.end());
+  velocities.erase(std::unique(velocities.begin(), velocities.end()), velocities.end());
+  return {{"format", 1},
+          {"scene_toml", to_toml(scene)},
+          {"velocities_m_s", velocities},
+          {"run_time_s", options.run_time},
+          {"averaging_start_s", options.averaging_start},
+          {"command", options.command}};
+}
+
+nlohmann::json read_sweep_identity(const std::string& out_dir) {
+  const fs::path file = fs::path(out_dir) / "sweep.json";
+  if (!fs::is_directory(out_dir)) throw InputError(out_dir + " is not a folder");
+  if (!fs::is_regular_file(file))
+    throw InputError(out_dir + " holds no sweep to resume (no sweep.json)");
+  try {
+    std::ifstream in(file);
+    nlohmann::json j = nlohmann::json::parse(in);
+    if (j.at("format").get<int>() != 1) throw InputError(file.string() + ": of another format");
+    return j;
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(file.string() + ": not a sweep's record");
+  }
 }
 
 }  // namespace fluidbed

@@ -6,8 +6,16 @@
 // still gets its decreasing branch, from below them).
 // The mean pressure drop of each run is eq 30 over its settled part. Runs of the increasing
 // branch are independent and run in parallel; the decreasing chain runs beside them.
+//
+// Each run's folder, OUT/runs/BRANCH-U/, holds its usual files, final.state and, once the run
+// ended (finished or failed), point.json (its row of the sweep). A run stopped by `stop` leaves
+// checkpoint/ (run/checkpoint.hpp) instead. OUT/sweep.json says what the sweep is (the resolved
+// scene, the velocities, the run and averaging times, the caller's `command`): a resumed sweep
+// must be the same sweep. Resumed, a run with point.json is read back, a run with a checkpoint
+// continues from it, the rest run; the result is the uninterrupted sweep's, bit for bit.
 #include <cstdint>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -23,6 +31,13 @@ struct SweepOptions {
   int threads = 2;                 // runs at once
   std::string out_dir;             // per-run outputs and states go under it (required)
   std::function<void(const std::string&)> log;  // one line per finished run (may be empty)
+  // Resume the sweep in out_dir (InputError when out_dir holds no sweep or another one).
+  bool resume = false;
+  // Asked after every step of every run: true stops each running run there with a checkpoint,
+  // starts no other, and the result says interrupted.
+  std::function<bool()> stop;
+  double checkpoint_interval = 60.0;  // wall s between a running run's checkpoints (<= 0: only at stop)
+  nlohmann::json command;             // how the caller started the sweep (kept in sweep.json)
 };
 
 struct SweepPoint {
@@ -34,6 +49,8 @@ struct SweepPoint {
   double wall_time = 0.0;              // s
   std::uint64_t start_hash = 0, end_hash = 0;  // particle configuration hashes (hand-over)
   std::string state_path;                      // its final state
+  bool interrupted = false;                    // stopped (SweepOptions::stop): not a result
+  bool resumed = false;                        // read back from point.json, or continued
 };
 
 struct SweepResult {
@@ -41,7 +58,13 @@ struct SweepResult {
   UmfFit umf;                        // from the decreasing branch
   double bed_weight_per_area = 0.0;  // Pa
   double wall_time = 0.0;            // s
+  bool interrupted = false;          // a run was stopped: resume with SweepOptions::resume
 };
+
+// The sweep.json of a sweep's folder: what run_sweep(scene, options) would write there.
+nlohmann::json sweep_identity(const Settings& scene, const SweepOptions& options);
+// OUT/sweep.json, read (InputError of one line when OUT holds no sweep).
+nlohmann::json read_sweep_identity(const std::string& out_dir);
 
 // 23 velocities from 0.5 to 3.2 m/s, denser around 1.4-2.2 m/s (the paper's 23 runs).
 std::vector<double> default_sweep_velocities();

@@ -219,4 +219,21 @@ std::string to_toml(const Settings& settings) {
   return out.str();
 }
 
+std::string first_difference(const std::string& now, const std::string& was) {
+  std::istringstream a(now), b(was);
+  std::string la, lb, section;
+  while (true) {
+    const bool ga = static_cast<bool>(std::getline(a, la)),
+               gb = static_cast<bool>(std::getline(b, lb));
+    if (!ga && !gb) return "";
+    if (!ga) la.clear();
+    if (!gb) lb.clear();
+    if (la != lb) {
+      auto bare = [](std::string l) { return l.substr(0, l.find("  #")); };
+      return section + " " + bare(la) + ", was " + bare(lb);
+    }
+    if (!la.empty() && la[0] == '[') section = la;
+  }
+}
+
 }  // namespace fluidbed

@@ -21,5 +21,8 @@ void validate(const Settings& s);
 
 // The fully resolved scene as TOML (every key, defaults included), for the run's output folder.
 std::string to_toml(const Settings& s);
+// The first line where two scenes of to_toml differ, as "[section] key = value, was key = value"
+// ("" when they are the same): why a resume refuses a changed scene.
+std::string first_difference(const std::string& now, const std::string& was);
 
 }  // namespace fluidbed

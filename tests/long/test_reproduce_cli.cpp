@@ -1,21 +1,38 @@
-// `fluidbed reproduce` end to end on a small bed: every figure (the bubble figures and the
-// uniform-distributor run's included) and the report's table are made.
+// `fluidbed reproduce` end to end on a small bed, interrupted and resumed: every figure (the
+// bubble figures and the uniform-distributor run's included) and the report's table are made.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <string>
 
 #include "../test_support.hpp"
 
 using namespace fluidbed::testing;
 
-TEST(ReproduceCli, WritesEveryFigureAndTheReport) {
+TEST(ReproduceCli, WritesEveryFigureAndTheReportAfterAnInterrupt) {
+  // The report is stopped by SIGTERM two seconds into the ideal case (after the paper's bed and
+  // the uniform bed finished), then finished by `reproduce --resume DIR`, which keeps the
+  // finished runs as they were.
   const auto dir = temp_dir("reproduce");
-  const CommandResult r = run_fluidbed(
-      "reproduce --quick --threads 1 --out " + dir.string() +
-          " --set particles.placement=lattice --set particles.count=300"
-          " --set particles.fill_height=0.12 --set time.end=0.3",
-      "reproduce");
+  const std::string out = (dir / "out.txt").string(), err = (dir / "err.txt").string();
+  const std::string cmd =
+      "sh -c '\"" + std::string(FLUIDBED_BINARY) + "\" reproduce --quick --threads 1 --out \"" +
+      dir.string() +
+      "\" --set particles.placement=lattice --set particles.count=300"
+      " --set particles.fill_height=0.12 --set time.end=0.3 > \"" + out + "\" 2> \"" + err +
+      "\" & p=$!; until grep -q \"== the ideal case\" \"" + out +
+      "\" 2> /dev/null || ! kill -0 $p 2> /dev/null; do sleep 0.1; done; sleep 2; kill -TERM $p; "
+      "wait $p; echo $? > \"" + (dir / "rc.txt").string() + "\"'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  ASSERT_EQ(std::stoi(read_file(dir / "rc.txt")), 130) << read_file(dir / "err.txt");
+  EXPECT_NE(read_file(dir / "err.txt").find("resume with: fluidbed reproduce --resume"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "report.md"));
+  const auto paper_written = std::filesystem::last_write_time(dir / "paper_bed/summary.json");
+  const CommandResult r = run_fluidbed("reproduce --resume " + dir.string(), "reproduce");
   ASSERT_EQ(r.status, 0) << r.err << r.out;
+  EXPECT_EQ(std::filesystem::last_write_time(dir / "paper_bed/summary.json"), paper_written);
   for (const char* f : {"report.md", "sweep/sweep.png", "sweep/sweep.csv", "sweep/summary.json",
                         "paper_bed/dp.png", "paper_bed/overlap.png", "paper_bed/trajectory.png",
                         "paper_bed/summary.json", "paper_bed/bubbles.png", "paper_bed/bubbles.csv",
