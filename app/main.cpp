@@ -245,6 +245,7 @@ int main(int argc, char** argv) {
       return fluidbed::app::sweep_command(sweep_args);
     }
     if (*reproduce) {
+      reproduce_args.threads_given = reproduce->count("--threads") > 0;
       for (const char* o : {"--quick", "--seeds", "--set"})
         reproduce_args.options_given = reproduce_args.options_given || reproduce->count(o) > 0;
       return fluidbed::app::reproduce_command(reproduce_args);

@@ -67,6 +67,7 @@ struct ReproduceArgs {
   std::string seeds;  // packings (run/ensemble.hpp); empty: 3, with --quick 1
   std::string resume;          // reproduce --resume DIR: finish the report in DIR
   bool options_given = false;  // --quick, --seeds or --set on the command line
+  bool threads_given = false;  // --threads on the command line
 };
 
 struct CheckArgs {

@@ -99,6 +99,7 @@ TrackedRun run_into(const fs::path& dir, const Settings& s, double until,
                     const std::vector<std::pair<double, double>>& track_at = {},
                     const std::vector<double>& montage = {}) {
   if (std::optional<TrackedRun> done = finished_run(dir)) return *done;
+  if (InterruptGuard::received() != 0) throw Interrupted{};  // stopped: start no other run
   fs::create_directories(dir);
   TrackedRun r = run_tracked(s, until, track_at, dir, montage);
   write_run_outputs(dir.string(), r.result);
@@ -266,10 +267,19 @@ std::vector<nlohmann::json> summaries_of(const std::vector<TrackedRun>& runs) {
   return s;
 }
 
+// The scenes the report's runs start from, resolved (the sweep checks its own).
+nlohmann::json report_scenes(const ReproduceArgs& a) {
+  const std::string scenes = asset_dir() + "/scenes/";
+  nlohmann::json j;
+  for (const char* name : {"xu_yu_1997.toml", "ideal.toml"})
+    j[name] = to_toml(load_scene(scenes + name, a.overrides));
+  return j;
+}
+
 // How the report was started (DIR/reproduce.json), for `reproduce --resume DIR`.
 nlohmann::json reproduce_json(const ReproduceArgs& a) {
   return {{"format", 1},      {"quick", a.quick},     {"seeds", a.seeds},
-          {"overrides", a.overrides}, {"threads", a.threads}};
+          {"overrides", a.overrides}, {"threads", a.threads}, {"scenes", report_scenes(a)}};
 }
 
 // `reproduce --resume DIR`: the arguments from DIR/reproduce.json (only --threads beside it).
@@ -292,6 +302,16 @@ ReproduceArgs resumed_reproduce_args(const ReproduceArgs& given) {
     a.quick = j.at("quick").get<bool>();
     a.seeds = j.at("seeds").get<std::string>();
     a.overrides = j.at("overrides").get<std::vector<std::string>>();
+    if (!given.threads_given) a.threads = j.at("threads").get<int>();
+    // The finished runs are kept only if the scenes are still the ones they ran.
+    const nlohmann::json now = report_scenes(a);
+    for (const auto& [name, toml] : j.at("scenes").items()) {
+      const std::string change =
+          first_difference(now.value(name, std::string()), toml.get<std::string>());
+      if (!change.empty())
+        throw InputError(head + "scene " + name + " is not the one the report started with (" +
+                         change + ")");
+    }
   } catch (const nlohmann::json::exception&) {
     throw InputError(head + "its reproduce.json does not say how the report was started");
   }
@@ -420,8 +440,8 @@ int reproduce_report(const ReproduceArgs& a) {
 
   // 4. The studies (speed against accuracy, stability, model choices): tiny with --quick. They
   // use their own scenes; the --set overrides above do not apply to them.
+  interrupts.reset();  // the flag outlives the handlers: a signal just before is still seen
   if (InterruptGuard::received() != 0) throw Interrupted{};
-  interrupts.reset();
   std::vector<study::Report> studies;
   for (const study::Info& info : study::all_studies()) {
     study::Options so_study;

@@ -112,6 +112,11 @@ static int sweep_ensemble(const SweepArgs& a) {
   const std::vector<std::uint64_t> seeds = parse_seeds(a.seeds, lattice_seed(s));
   const SweepOptions base = sweep_options(a);
   namespace fs = std::filesystem;
+  for (const std::uint64_t seed : seeds) {  // a refused resume leaves the folder as it was
+    SweepOptions o = base;
+    o.out_dir = (fs::path(base.out_dir) / "seeds" / std::to_string(seed)).string();
+    check_sweep_resume(with_seed(s, seed), o);
+  }
   fs::create_directories(base.out_dir);
   fs::remove(fs::path(base.out_dir) / "summary.json");  // only a finished ensemble has one
   if (!base.resume) {
@@ -255,6 +260,7 @@ int sweep_command(const SweepArgs& given) {
   const Settings s = load_scene(a.scene, a.overrides);
   refuse_unsafe_scene(s);
   const SweepOptions o = sweep_options(a);
+  check_sweep_resume(s, o);  // a refused resume leaves the folder as it was
   std::filesystem::create_directories(o.out_dir);
   std::filesystem::remove(std::filesystem::path(o.out_dir) / "summary.json");  // only a finished sweep has one
   const InterruptGuard interrupts;

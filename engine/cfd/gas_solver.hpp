@@ -130,7 +130,8 @@ class GasSolver {
   // A step that starts at a CFL number in (kSplitFromCfl, 1] but ends above 1 (the flow sped up
   // within it: a jet opening its cavity, a raised inlet) is taken again from its start as up to
   // kMaxSubsteps equal sub-steps of CFL about kSubstepCfl, with the same F and the porosity moving
-  // linearly to eps; it fails only if a sub-step is still above 1. The report sums the sub-steps.
+  // linearly to eps; it fails only if a sub-step is still above 1. The report sums the sub-steps,
+  // and the solver's own step count (GasState::steps, "gas step N" in messages) counts each.
   GasStepReport step(double dt, const std::vector<double>& eps, const std::vector<double>& fx,
                      const std::vector<double>& fy);
 

@@ -173,6 +173,13 @@ void restore_recorder(const Checkpoint& c, RunRecorder& recorder) {
   recorder.restore(src);
 }
 
+bool has_checkpoint(const std::string& run_dir) {
+  std::error_code ec;
+  fs::path dir = folder_of(run_dir);
+  if (!fs::is_directory(dir, ec)) dir = aside_folder(run_dir);
+  return !dir.empty() && fs::exists(dir / "run.bin", ec);
+}
+
 void remove_checkpoint(const std::string& run_dir) {
   std::error_code ec;
   fs::remove_all(folder_of(run_dir), ec);

@@ -43,6 +43,9 @@ Checkpoint read_checkpoint(const std::string& run_dir);
 void restore_simulation(const Checkpoint& c, Simulation& sim);
 // Puts the checkpoint's accumulators into `recorder` (built on the restored simulation).
 void restore_recorder(const Checkpoint& c, RunRecorder& recorder);
+// Whether RUN_DIR holds a checkpoint to resume from (its checkpoint/ folder, or the previous one
+// set aside by a process killed while it replaced it).
+bool has_checkpoint(const std::string& run_dir);
 // Removes RUN_DIR's checkpoint (the run finished).
 void remove_checkpoint(const std::string& run_dir);
 

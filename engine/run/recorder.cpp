@@ -260,6 +260,10 @@ void RunRecorder::save(std::ostream& out) const {
 void RunRecorder::restore(BinarySource& in) {
   char tag[sizeof kRecorderTag];
   in.stream().read(tag, sizeof tag);
+  if (in.stream() && std::memcmp(tag, kRecorderTag, 6) == 0 &&
+      std::memcmp(tag, kRecorderTag, sizeof tag) != 0)
+    in.fail("written by another version of fluidbed (recorder " + std::string(tag + 6, 2) +
+            ", this one reads " + std::string(kRecorderTag + 6, 2) + "): run it again from its start");
   if (!in.stream() || std::memcmp(tag, kRecorderTag, sizeof tag) != 0)
     in.fail("not a run recorder's");
   const std::int64_t last_step = last_step_, row_every = row_every_;

@@ -104,7 +104,7 @@ SweepPoint run_point(const Settings& scene, const SweepOptions& o, const std::st
     pt.start_hash = sim.dem().configuration_hash();
     RunOptions ro;
     std::optional<Checkpoint> c;
-    if (o.resume && fs::is_directory(dir / "checkpoint")) {
+    if (o.resume && has_checkpoint(dir.string())) {
       c = read_checkpoint(dir.string());
       if (c->scene_toml != scene_toml)
         throw InputError("cannot resume " + dir.string() + ": its checkpoint is of another scene (" +
@@ -211,18 +211,7 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   const nlohmann::json identity = sweep_identity(scene, o);
   const fs::path identity_file = fs::path(o.out_dir) / "sweep.json";
   if (o.resume && fs::exists(identity_file)) {
-    const nlohmann::json was = read_sweep_identity(o.out_dir);
-    const std::string head = "cannot resume " + o.out_dir + ": ";
-    const std::string scene_change =
-        first_difference(identity["scene_toml"].get<std::string>(),
-                         was.value("scene_toml", std::string()));
-    if (!scene_change.empty())
-      throw InputError(head + "the scene is not the one the sweep started with (" + scene_change +
-                       ")");
-    for (const char* key : {"velocities_m_s", "run_time_s", "averaging_start_s"})
-      if (identity[key] != was.value(key, nlohmann::json()))
-        throw InputError(head + "the sweep's " + key + " " + identity[key].dump() + " differ from " +
-                         was.value(key, nlohmann::json()).dump());
+    check_sweep_resume(scene, o);
   } else {
     fs::create_directories(o.out_dir);
     for (const char* branch : {"up", "down"})
@@ -269,7 +258,13 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
       result.up[k].u = o.velocities[k];
       result.up[k].interrupted = true;
     } else {
-      result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
+      try {
+        result.up[k] = run_point(scene, o, "up", o.velocities[k], "");
+      } catch (...) {  // an InputError or a file error: the sweep ends with it (RunPool rethrows)
+        result.up[k].interrupted = true;  // so that the chain, waiting on it, stops
+        state[k] = 2;
+        throw;
+      }
       if (!result.up[k].interrupted) report(result.up[k]);
     }
     state[k] = 2;
@@ -352,6 +347,24 @@ nlohmann::json sweep_identity(const Settings& scene, const SweepOptions& options
           {"run_time_s", options.run_time},
           {"averaging_start_s", options.averaging_start},
           {"command", options.command}};
+}
+
+void check_sweep_resume(const Settings& scene, const SweepOptions& options) {
+  if (!options.resume || !fs::exists(fs::path(options.out_dir) / "sweep.json")) return;
+  SweepOptions o = options;
+  if (o.velocities.empty()) o.velocities = default_sweep_velocities(scene);
+  const nlohmann::json identity = sweep_identity(scene, o);
+  const nlohmann::json was = read_sweep_identity(o.out_dir);
+  const std::string head = "cannot resume " + o.out_dir + ": ";
+  const std::string scene_change = first_difference(identity["scene_toml"].get<std::string>(),
+                                                    was.value("scene_toml", std::string()));
+  if (!scene_change.empty())
+    throw InputError(head + "the scene is not the one the sweep started with (" + scene_change +
+                     ")");
+  for (const char* key : {"velocities_m_s", "run_time_s", "averaging_start_s"})
+    if (identity[key] != was.value(key, nlohmann::json()))
+      throw InputError(head + "the sweep's " + key + " " + identity[key].dump() + " differ from " +
+                       was.value(key, nlohmann::json()).dump());
 }
 
 nlohmann::json read_sweep_identity(const std::string& out_dir) {

@@ -81,7 +81,7 @@ TEST(GasSubsteps, FastGasIsSteppedEarlyInsteadOfFailing) {
 }
 
 TEST(GasSubsteps, TeachingBedStartsAtAnyVelocityOfTheViewersSlider) {
-  // The viewer's Reset starts the teaching scene (gas every 3 particle steps) from the packed bed
+  // The viewer's Reset starts the teaching scene (gas every 2 particle steps) from the packed bed
   // at the slider's velocity, up to 2.5 U_mf = 4.5 m/s. At 3.79 m/s (found by the viewer's soak
   // test) the gas step early at t = 3 ms starts at CFL 0.76 (jet 57 m/s) and the flow into the
   // opening cavity reaches 77 m/s within it: CFL 1.03. The step is taken again in two halves.
