@@ -154,7 +154,14 @@ int run_ensemble(const RunArgs& a) {
     LiveRunFolder live(dir, sk.scene.name, a.bubbles, 1.0);
     {
       std::ofstream scene_out(fs::path(dir) / "scene.toml");
-      scene_out << "# the scene as run, every value resolved\n" << to_toml(sk);
+      // A packed start from particles.packing_scene packs with that scene's own seed unless an
+      // ensemble sets it, which no scene key says: the comment does, and how to run it again.
+      scene_out << "# the scene as run, every value resolved; an ensemble's member: its particles "
+                   "start from lattice seed "
+                << seed << " (packed: the packing scene's bed packed from that seed), which this "
+                << "file alone does not set; run it again with --seeds " << seed
+                << ",T (any other seed T)\n"
+                << to_toml(sk);
     }
     RunOptions opt;
     opt.until = a.until >= 0.0 ? a.until : sk.time.end;
