@@ -142,7 +142,9 @@ TEST(CoupledBed, MinimumFluidizationFromTheModel) {
   auto umf = [&](bool model_a, double lo, double hi) {
     const RootBracket b = false_position(
         [&](double U) { return force_ratio(U, model_a) - 1.0; }, lo, hi, 6, 0.005);
-    return 0.5 * (b.lo + b.hi);
+    // The secant's root, not the bracket's middle: false position moves one end only on a convex
+    // curve, so the bracket can stay wide while its moving end converges.
+    return b.secant_root();
   };
   const double model_a = umf(true, 1.5, 2.3);
   const double printed = umf(false, 2.3, 4.5);
