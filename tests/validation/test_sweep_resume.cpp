@@ -149,3 +149,39 @@ TEST(SweepResume, CommandLineSigtermThenResume) {
   };
   EXPECT_EQ(points(ref), points(dir));
 }
+
+TEST(SweepResume, EnsembleOfTwoSeedsResumesSeedBySeed) {
+  // `sweep --seeds 2` of the small bed (runs of 0.05 s): SIGTERM after 1 s stops it in the first
+  // seed's sweep; the resumed ensemble's summary equals the uninterrupted one's.
+  std::string args = std::string(FLUIDBED_ASSET_DIR) +
+                     "/scenes/xu_yu_1997.toml --velocities 0.5,1.0,1.5 --run-time 0.05 "
+                     "--averaging-start 0.02 --threads 1 --seeds 2";
+  for (const auto& o : kSmallBed) args += " --set " + o;
+  const fs::path ref = temp_dir("sweep-seeds-ref"), dir = temp_dir("sweep-seeds");
+  const CommandResult r = run_fluidbed("sweep " + args + " --out " + ref.string(), "sweep-seeds");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string cmd = "sh -c '\"" + std::string(FLUIDBED_BINARY) + "\" sweep " + args +
+                          " --out \"" + dir.string() + "\" > \"" + (dir / "out.txt").string() +
+                          "\" 2> \"" + (dir / "err.txt").string() +
+                          "\" & p=$!; sleep 1; kill -TERM $p; wait $p; echo $? > \"" +
+                          (dir / "rc.txt").string() + "\"'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(std::stoi(read_file(dir / "rc.txt")), 130) << read_file(dir / "err.txt");
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  const CommandResult resumed = run_fluidbed("sweep --resume " + dir.string(), "sweep-seeds-resume");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  auto ensemble = [](const fs::path& d) {
+    nlohmann::json e = nlohmann::json::parse(read_file(d / "summary.json"))["ensemble"];
+    for (auto it = e.begin(); it != e.end();)
+      it = it.key().find("wall") != std::string::npos ? e.erase(it) : std::next(it);
+    return e;
+  };
+  EXPECT_EQ(ensemble(ref), ensemble(dir));
+  int seeds = 0;
+  for (const auto& e : fs::directory_iterator(ref / "seeds")) {
+    const fs::path run = fs::path("seeds") / e.path().filename() / "runs/down-0.500/timeseries.csv";
+    EXPECT_EQ(read_file(ref / run), read_file(dir / run)) << run;
+    ++seeds;
+  }
+  EXPECT_EQ(seeds, 2);
+}
