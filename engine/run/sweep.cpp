@@ -208,7 +208,6 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   prepare_packed_bed(scene, o.log);
   // The folder's sweep: the same one when resumed (a folder with no sweep.json yet has nothing
   // to resume), a new one otherwise, whose runs' records and checkpoints from before are removed.
-  const nlohmann::json identity = sweep_identity(scene, o);
   const fs::path identity_file = fs::path(o.out_dir) / "sweep.json";
   if (o.resume && fs::exists(identity_file)) {
     check_sweep_resume(scene, o);
@@ -220,6 +219,7 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
         fs::remove(point_dir(o, branch, u) / "point.json", ec);
         remove_checkpoint(point_dir(o, branch, u).string());
       }
+    const nlohmann::json identity = sweep_identity(scene, o);
     write_file_atomically(identity_file.string(),
                           [&](std::ostream& out) { out << identity.dump(2) << "\n"; });
   }

@@ -41,6 +41,24 @@ SweepOptions small_sweep(const fs::path& dir) {
   return o;
 }
 
+// `fluidbed sweep` of the small bed with `options`, into `dir` (its own output beside it).
+std::string small_sweep_args(const std::string& options) {
+  std::string args = std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml " + options;
+  for (const auto& o : kSmallBed) args += " --set " + o;
+  return args;
+}
+
+// `fluidbed sweep ARGS --out DIR` in the background, SIGTERM after `seconds`; the exit status.
+int sweep_and_terminate(const std::string& args, const fs::path& dir, const char* seconds) {
+  const std::string cmd = "sh -c '\"" + std::string(FLUIDBED_BINARY) + "\" sweep " + args +
+                          " --out \"" + dir.string() + "\" > \"" + (dir / "out.txt").string() +
+                          "\" 2> \"" + (dir / "err.txt").string() + "\" & p=$!; sleep " +
+                          seconds + "; kill -TERM $p; wait $p; echo $? > \"" +
+                          (dir / "rc.txt").string() + "\"'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  return std::stoi(read_file(dir / "rc.txt"));
+}
+
 void expect_same_point(const SweepPoint& a, const SweepPoint& b, const fs::path& da,
                        const fs::path& db) {
   const std::string what = a.branch + " " + std::to_string(a.u);
@@ -112,21 +130,13 @@ TEST(SweepResume, CommandLineSigtermThenResume) {
   // The same small bed with runs of 0.1 s (about a second each): SIGTERM after 1.5 s stops the
   // sweep inside its second run; `sweep --resume DIR` finishes it with the numbers of a sweep
   // that was never stopped.
-  std::string args = std::string(FLUIDBED_ASSET_DIR) +
-                     "/scenes/xu_yu_1997.toml --velocities 0.5,1.0,1.5 --run-time 0.1 "
-                     "--averaging-start 0.05 --threads 1";
-  for (const auto& o : kSmallBed) args += " --set " + o;
+  const std::string args =
+      small_sweep_args("--velocities 0.5,1.0,1.5 --run-time 0.1 --averaging-start 0.05 --threads 1");
   const fs::path ref = temp_dir("sweep-cli-ref"), dir = temp_dir("sweep-cli");
   const CommandResult r = run_fluidbed("sweep " + args + " --out " + ref.string(), "sweep-cli-ref");
   ASSERT_EQ(r.status, 0) << r.err;
 
-  const std::string cmd = "sh -c '\"" + std::string(FLUIDBED_BINARY) + "\" sweep " + args +
-                          " --out \"" + dir.string() + "\" > \"" + (dir / "out.txt").string() +
-                          "\" 2> \"" + (dir / "err.txt").string() +
-                          "\" & p=$!; sleep 1.5; kill -TERM $p; wait $p; echo $? > \"" +
-                          (dir / "rc.txt").string() + "\"'";
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
-  EXPECT_EQ(std::stoi(read_file(dir / "rc.txt")), 130);
+  EXPECT_EQ(sweep_and_terminate(args, dir, "1.5"), 130);
   const std::string err = read_file(dir / "err.txt");
   EXPECT_NE(err.find("resume with: fluidbed sweep --resume " + dir.string()), std::string::npos)
       << err;
@@ -153,20 +163,12 @@ TEST(SweepResume, CommandLineSigtermThenResume) {
 TEST(SweepResume, EnsembleOfTwoSeedsResumesSeedBySeed) {
   // `sweep --seeds 2` of the small bed (runs of 0.05 s): SIGTERM after 1 s stops it in the first
   // seed's sweep; the resumed ensemble's summary equals the uninterrupted one's.
-  std::string args = std::string(FLUIDBED_ASSET_DIR) +
-                     "/scenes/xu_yu_1997.toml --velocities 0.5,1.0,1.5 --run-time 0.05 "
-                     "--averaging-start 0.02 --threads 1 --seeds 2";
-  for (const auto& o : kSmallBed) args += " --set " + o;
+  const std::string args = small_sweep_args(
+      "--velocities 0.5,1.0,1.5 --run-time 0.05 --averaging-start 0.02 --threads 1 --seeds 2");
   const fs::path ref = temp_dir("sweep-seeds-ref"), dir = temp_dir("sweep-seeds");
   const CommandResult r = run_fluidbed("sweep " + args + " --out " + ref.string(), "sweep-seeds");
   ASSERT_EQ(r.status, 0) << r.err;
-  const std::string cmd = "sh -c '\"" + std::string(FLUIDBED_BINARY) + "\" sweep " + args +
-                          " --out \"" + dir.string() + "\" > \"" + (dir / "out.txt").string() +
-                          "\" 2> \"" + (dir / "err.txt").string() +
-                          "\" & p=$!; sleep 1; kill -TERM $p; wait $p; echo $? > \"" +
-                          (dir / "rc.txt").string() + "\"'";
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
-  EXPECT_EQ(std::stoi(read_file(dir / "rc.txt")), 130) << read_file(dir / "err.txt");
+  EXPECT_EQ(sweep_and_terminate(args, dir, "1"), 130) << read_file(dir / "err.txt");
   EXPECT_FALSE(fs::exists(dir / "summary.json"));
   const CommandResult resumed = run_fluidbed("sweep --resume " + dir.string(), "sweep-seeds-resume");
   ASSERT_EQ(resumed.status, 0) << resumed.err;
