@@ -72,8 +72,8 @@ void settle_window() {
 TEST(ViewWindow, HeldSliderKeepsTheVelocityUnderThePointer) {
   REQUIRE_XDOTOOL();
   const auto dir = fresh_dir("slider");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
-  const std::string script = write_file(dir / "s.txt", "wait 5\nquit\n");
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
+  const std::string script = written_file(dir / "s.txt", "wait 5\nquit\n");
   BackgroundView v(dir, scene + " --script " + script + " --frame-size 1024x600 --out " +
                             (dir / "out").string());
   ASSERT_FALSE(v.wait_for_widget("velocity_slider").empty()) << v.log();
@@ -104,8 +104,8 @@ TEST(ViewWindow, HeldSliderKeepsTheVelocityUnderThePointer) {
 TEST(ViewWindow, KeyTapsShorterThanAFrameAct) {
   REQUIRE_XDOTOOL();
   const auto dir = fresh_dir("keys");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
-  const std::string script = write_file(dir / "s.txt", "pause\nwait 4\nquit\n");
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
+  const std::string script = written_file(dir / "s.txt", "pause\nwait 4\nquit\n");
   BackgroundView v(dir, scene + " --script " + script + " --frame-size 1024x600 --out " +
                             (dir / "out").string() + " --max-fps 10");
   const auto bed = v.wait_for_widget("bed0");
@@ -129,7 +129,7 @@ TEST(ViewWindow, KeyTapsShorterThanAFrameAct) {
 TEST(ViewWindow, TrackingRingShowsInTheCloseUpAndZoomLeavesTheLabels) {
   REQUIRE_WINDOW();
   const auto dir = fresh_dir("track");
-  const std::string scene = write_file(dir / "tall.toml", kViewTallScene);
+  const std::string scene = written_file(dir / "tall.toml", kViewTallScene);
   // A particle in the middle of the close-up (its lower 0.072 m), far enough from the walls and
   // the floor for a view zoomed 3 times to centre on it.
   Simulation sim(parse_scene(kViewTallScene, "tall"));
@@ -140,7 +140,7 @@ TEST(ViewWindow, TrackingRingShowsInTheCloseUpAndZoomLeavesTheLabels) {
   ASSERT_LT(id, p.size());
   const std::string a = (dir / "a.png").string(), b = (dir / "b.png").string();
   const std::string script =
-      write_file(dir / "s.txt", "track " + std::to_string(id) + "\nat 0.005 screenshot " + a +
+      written_file(dir / "s.txt", "track " + std::to_string(id) + "\nat 0.005 screenshot " + a +
                                     "\nzoom 3\nscreenshot " + b + "\nquit\n");
   BackgroundView v(dir, scene + " --script " + script + " --frame-size 1024x600 --out " +
                             (dir / "out").string());
@@ -178,7 +178,7 @@ TEST(ViewWindow, TrackingRingShowsInTheCloseUpAndZoomLeavesTheLabels) {
 TEST(ViewWindow, FailureMessageWrapsAndResetActsAsDuringARun) {
   REQUIRE_XDOTOOL();
   const auto dir = fresh_dir("failure");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
   BackgroundView v(dir, scene + " --frame-size 1024x600 --out " + (dir / "out").string());
   ASSERT_FALSE(v.wait_for_widget("velocity_slider").empty()) << v.log();
   settle_window();
@@ -251,9 +251,9 @@ namespace {
 TEST(ViewWindow, DeepOverlapsAreWarnedOf) {
   REQUIRE_WINDOW();
   const auto dir = fresh_dir("overlap");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
   const std::string script =
-      write_file(dir / "s.txt", "at 0.3 screenshot " + (dir / "a.png").string() + "\nquit\n");
+      written_file(dir / "s.txt", "at 0.3 screenshot " + (dir / "a.png").string() + "\nquit\n");
   BackgroundView v(dir, scene + " --set contact.stiffness=30 --script " + script +
                             " --frame-size 1024x600 --out " + (dir / "out").string());
   ASSERT_EQ(v.wait(), 0) << v.log();
@@ -283,10 +283,10 @@ std::vector<std::string> csv_rows(const fs::path& file) {
 TEST(ViewWindow, ScriptedHoldsBuildTheLiveCurve) {
   REQUIRE_WINDOW();
   const auto dir = fresh_dir("curve");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
   const std::string c1 = (dir / "c1.csv").string(), c2 = (dir / "c2.csv").string(),
                     c3 = (dir / "c3.csv").string(), png = (dir / "c2.png").string();
-  const std::string script = write_file(dir / "s.txt",
+  const std::string script = written_file(dir / "s.txt",
                                         "settle 0.01\naverage 0.02\n"
                                         "at 0.04 velocity 2.5\n"
                                         "at 0.08 velocity 3.0\n"
@@ -325,10 +325,10 @@ TEST(ViewWindow, ScriptedHoldsBuildTheLiveCurve) {
 TEST(ViewWindow, CaptionShowsInTheScreenshot) {
   REQUIRE_WINDOW();
   const auto dir = fresh_dir("caption");
-  const std::string scene = write_file(dir / "tall.toml", kViewTallScene);
+  const std::string scene = written_file(dir / "tall.toml", kViewTallScene);
   const std::string a = (dir / "a.png").string(), b = (dir / "b.png").string();
   const std::string script =
-      write_file(dir / "s.txt", "screenshot " + a +
+      written_file(dir / "s.txt", "screenshot " + a +
                                     "\ncaption \"The bed is packed: the gas seeps through.\"\n"
                                     "screenshot " +
                                     b + "\nquit\n");
@@ -358,9 +358,9 @@ TEST(ViewWindow, OpensAtTheSizeItsHelpSays) {
   ASSERT_NE(at, std::string::npos) << help.output;
   int w = 0, h = 0;
   ASSERT_EQ(std::sscanf(help.output.c_str() + at, "window size WxH in pixels (%dx%d", &w, &h), 2);
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
   const std::string shot = (dir / "a.png").string();
-  const std::string script = write_file(dir / "s.txt", "screenshot " + shot + "\nquit\n");
+  const std::string script = written_file(dir / "s.txt", "screenshot " + shot + "\nquit\n");
   const ViewRun r =
       run_view(dir, scene + " --script " + script + " --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
@@ -376,8 +376,8 @@ fs::path assets_with_lesson(const fs::path& dir, const std::string& lesson_text)
   fs::create_directories(assets / "lessons");
   fs::create_directory_symlink(fs::path(FLUIDBED_ASSET_DIR) / "fonts", assets / "fonts");
   fs::create_directories(assets / "scenes");
-  write_file(assets / "scenes" / "tall.toml", kViewTallScene);
-  write_file(assets / "lessons" / "short.txt", lesson_text);
+  written_file(assets / "scenes" / "tall.toml", kViewTallScene);
+  written_file(assets / "lessons" / "short.txt", lesson_text);
   return assets;
 }
 

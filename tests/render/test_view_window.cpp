@@ -105,9 +105,9 @@ TEST(ViewWindow, ScriptedRunChangesTheGasAndTakesAScreenshot) {
     GTEST_SKIP() << "no display (ctest runs this test under xvfb-run)";
   }
   const auto dir = fresh_dir("window");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
   const std::string shot0 = (dir / "start.png").string(), shot1 = (dir / "later.png").string();
-  const std::string script = write_file(dir / "demo.txt", "screenshot " + shot0 +
+  const std::string script = written_file(dir / "demo.txt", "screenshot " + shot0 +
                                                               "\n"
                                                               "at 0.01 velocity 3.5\n"
                                                               "colour mixing\n"
@@ -161,10 +161,10 @@ TEST(ViewWindow, RecordsAnMp4) {
     GTEST_SKIP() << "no display (ctest runs this test under xvfb-run)";
   }
   const auto dir = fresh_dir("record");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
   const std::string video = (dir / "demo.mp4").string();
   const std::string script =
-      write_file(dir / "rec.txt", "record " + video + "\nwait 1.0\nrecord stop\nquit\n");
+      written_file(dir / "rec.txt", "record " + video + "\nwait 1.0\nrecord stop\nquit\n");
   const ViewRun r = run_view(
       dir, scene + " --script " + script + " --frame-size 640x400 --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
@@ -174,9 +174,9 @@ TEST(ViewWindow, RecordsAnMp4) {
 
 TEST(ViewCommand, WithoutADisplayWritesHeadlessFrames) {
   const auto dir = fresh_dir("headless");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
   const std::string shot = (dir / "shot.png").string();
-  const std::string script = write_file(
+  const std::string script = written_file(
       dir / "s.txt", "at 0.01 velocity 3\nat 0.02 screenshot " + shot + "\nat 0.04 quit\n");
   const ViewRun r = run_view(
       dir, scene + " --script " + script + " --frame-size 320x240 --out " + (dir / "out").string(),
@@ -193,8 +193,8 @@ TEST(ViewCommand, WithoutADisplayWritesHeadlessFrames) {
 
 TEST(ViewCommand, BadInputIsOneLineAndStatusTwo) {
   const auto dir = fresh_dir("bad");
-  const std::string scene = write_file(dir / "small.toml", kViewTestScene);
-  const std::string bad_script = write_file(dir / "bad.txt", "velocity 2\nfly away\n");
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
+  const std::string bad_script = written_file(dir / "bad.txt", "velocity 2\nfly away\n");
   ViewRun r = run_view(dir, scene + " --script " + bad_script);
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("line 2: unknown command 'fly'"), std::string::npos) << r.output;

@@ -46,7 +46,10 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
   return d;
 }
 
-inline std::string write_file(const std::filesystem::path& p, const std::string& text) {
+// Writes TEXT to P and returns P as a string (a command line's argument). Not test_support.hpp's
+// write_file: the two are in one namespace, and one name with two return types in two test files
+// is one function to the linker.
+inline std::string written_file(const std::filesystem::path& p, const std::string& text) {
   std::ofstream(p) << text;
   return p.string();
 }
