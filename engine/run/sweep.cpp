@@ -201,6 +201,17 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   std::sort(o.velocities.begin(), o.velocities.end());
   o.velocities.erase(std::unique(o.velocities.begin(), o.velocities.end()), o.velocities.end());
   if (o.velocities.size() < 2) throw InputError("sweep: needs at least two velocities");
+  // Each run's folder is named by its velocity to 1 mm/s: two velocities closer than that would
+  // share one folder, the second run overwriting the first's files.
+  for (std::size_t k = 1; k < o.velocities.size(); ++k)
+    if (point_name("up", o.velocities[k - 1]) == point_name("up", o.velocities[k])) {
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "sweep: velocities %.6g and %.6g m/s are the same to 1 mm/s (each run's folder "
+                    "is named by its velocity in mm/s); give velocities at least 1 mm/s apart",
+                    o.velocities[k - 1], o.velocities[k]);
+      throw InputError(line);
+    }
   o.threads = std::max(1, o.threads);
 
   const auto start = std::chrono::steady_clock::now();

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "../test_support.hpp"
+#include "core/errors.hpp"
 #include "run/sweep.hpp"
 #include "analysis/umf_fit.hpp"
 #include "scene/scene_loader.hpp"
@@ -71,6 +72,27 @@ TEST(Sweep, BranchOrderAndStateHandOver) {
   const SweepResult r1 = run_sweep(s, o);
   for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(r1.up[k].dp_mean, r.up[k].dp_mean);
   for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(r1.down[k].end_hash, r.down[k].end_hash);
+}
+
+TEST(Sweep, VelocitiesThatWouldShareARunFolderAreRefused) {
+  // Runs are kept in runs/up-1.800 and the like: 1.8001 and 1.8004 m/s would share a folder.
+  Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml",
+                          {"particles.placement=lattice", "particles.count=150"});
+  SweepOptions o;
+  o.velocities = {2.0, 1.8004, 1.8001};
+  o.run_time = 0.006;
+  o.averaging_start = 0.003;
+  o.out_dir = fluidbed::testing::temp_dir("sweep-close").string();
+  try {
+    run_sweep(s, o);
+    FAIL() << "velocities 1 mm/s apart were accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("1.8001 and 1.8004"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  // Nothing was run or written for the refused sweep.
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(o.out_dir) / "runs"));
 }
 
 TEST(Sweep, DecreasingBranchStartsFromTheHighestFinishedRun) {
