@@ -18,9 +18,8 @@ using fluidbed::sphere_quadrant_volume;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kR = 0.002;  // m, the paper's particle radius
-const double kVs = 4.0 / 3.0 * kPi * kR * kR * kR;
+constexpr double kSphereR = 0.002;  // m, the paper's particle radius
+const double kSphereV = 4.0 / 3.0 * std::numbers::pi * kSphereR * kSphereR * kSphereR;
 
 // Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n, the textbook recurrence).
 struct Gauss {
@@ -28,7 +27,7 @@ struct Gauss {
   std::array<double, n> u{}, w{};
   Gauss() {
     for (int k = 0; k < n; ++k) {
-      double x = std::cos(kPi * (k + 0.75) / (n + 0.5));
+      double x = std::cos(std::numbers::pi * (k + 0.75) / (n + 0.5));
       double dp = 0.0;
       for (int it = 0; it < 100; ++it) {
         double p0 = 1.0, p1 = x;
@@ -62,7 +61,7 @@ double quadrature_quadrant(double R, double a, double b) {
     const double y0 = std::max(b, -r);
     if (y0 >= r) return 0.0;
     const double phi0 = std::asin(y0 / r);
-    const double span = 0.5 * kPi - phi0;
+    const double span = 0.5 * std::numbers::pi - phi0;
     double s = 0.0;
     for (int k = 0; k < Gauss::n; ++k) {
       const double c = std::cos(phi0 + span * kGauss.u[k]);
@@ -91,7 +90,7 @@ double quadrature_quadrant(double R, double a, double b) {
 }
 
 double textbook_cap(double R, double h) {
-  return kPi * h * h * (3.0 * R - h) / 3.0;
+  return std::numbers::pi * h * h * (3.0 * R - h) / 3.0;
 }
 
 double sum(const std::vector<double>& v) {
@@ -111,49 +110,56 @@ int count_nonzero(const std::vector<double>& v) {
 TEST(PorosityQuadrature, ReproducesSphereAndCaps) {
   // The test's own integrator, checked where the answer is textbook: its resolution is about
   // 1e-15 of the sphere, which justifies the 1e-12 tolerances of the comparisons below.
-  EXPECT_NEAR(quadrature_quadrant(kR, -2 * kR, -2 * kR), kVs, 1e-14 * kVs);
-  EXPECT_NEAR(quadrature_quadrant(kR, 0.0, 0.0), kVs / 4, 1e-14 * kVs);
+  EXPECT_NEAR(quadrature_quadrant(kSphereR, -2 * kSphereR, -2 * kSphereR), kSphereV,
+              1e-14 * kSphereV);
+  EXPECT_NEAR(quadrature_quadrant(kSphereR, 0.0, 0.0), kSphereV / 4, 1e-14 * kSphereV);
   for (double h : {0.1e-3, 0.7e-3, 1.5e-3, 2.9e-3}) {
-    EXPECT_NEAR(quadrature_quadrant(kR, kR - h, -kR), textbook_cap(kR, h), 1e-14 * kVs);
-    EXPECT_NEAR(quadrature_quadrant(kR, -kR, kR - h), textbook_cap(kR, h), 1e-14 * kVs);
+    EXPECT_NEAR(quadrature_quadrant(kSphereR, kSphereR - h, -kSphereR), textbook_cap(kSphereR, h),
+                1e-14 * kSphereV);
+    EXPECT_NEAR(quadrature_quadrant(kSphereR, -kSphereR, kSphereR - h), textbook_cap(kSphereR, h),
+                1e-14 * kSphereV);
   }
 }
 
 TEST(PorosityCap, TextbookValuesAndLimits) {
-  EXPECT_DOUBLE_EQ(sphere_cap_volume(kR, kR), 0.0);
-  EXPECT_DOUBLE_EQ(sphere_cap_volume(kR, 3 * kR), 0.0);
-  EXPECT_DOUBLE_EQ(sphere_cap_volume(kR, -kR), kVs);
-  EXPECT_DOUBLE_EQ(sphere_cap_volume(kR, -5 * kR), kVs);
-  EXPECT_NEAR(sphere_cap_volume(kR, 0.0), kVs / 2, 1e-15 * kVs);
+  EXPECT_DOUBLE_EQ(sphere_cap_volume(kSphereR, kSphereR), 0.0);
+  EXPECT_DOUBLE_EQ(sphere_cap_volume(kSphereR, 3 * kSphereR), 0.0);
+  EXPECT_DOUBLE_EQ(sphere_cap_volume(kSphereR, -kSphereR), kSphereV);
+  EXPECT_DOUBLE_EQ(sphere_cap_volume(kSphereR, -5 * kSphereR), kSphereV);
+  EXPECT_NEAR(sphere_cap_volume(kSphereR, 0.0), kSphereV / 2, 1e-15 * kSphereV);
   for (double a : {-1.9e-3, -1.0e-3, -0.3e-3, 0.2e-3, 1.2e-3, 1.99e-3}) {
     // h = R - a; cap + opposite cap = sphere.
-    EXPECT_NEAR(sphere_cap_volume(kR, a), textbook_cap(kR, kR - a),
-                1e-13 * textbook_cap(kR, kR - a));
-    EXPECT_NEAR(sphere_cap_volume(kR, a) + sphere_cap_volume(kR, -a), kVs, 1e-15 * kVs);
+    EXPECT_NEAR(sphere_cap_volume(kSphereR, a), textbook_cap(kSphereR, kSphereR - a),
+                1e-13 * textbook_cap(kSphereR, kSphereR - a));
+    EXPECT_NEAR(sphere_cap_volume(kSphereR, a) + sphere_cap_volume(kSphereR, -a), kSphereV,
+                1e-15 * kSphereV);
   }
 }
 
 TEST(PorosityDoubleCap, SpecialValues) {
   // A quarter sphere; half a cap when one plane goes through the centre; a cap when the other
   // plane misses the sphere; nothing beyond the sphere; the whole sphere.
-  EXPECT_NEAR(sphere_quadrant_volume(kR, 0.0, 0.0), kVs / 4, 1e-15 * kVs);
-  EXPECT_NEAR(sphere_quadrant_volume(kR, 0.8e-3, 0.0), 0.5 * sphere_cap_volume(kR, 0.8e-3),
-              1e-15 * kVs);
-  EXPECT_NEAR(sphere_quadrant_volume(kR, 0.0, -0.8e-3), 0.5 * (kVs - sphere_cap_volume(kR, 0.8e-3)),
-              1e-15 * kVs);
-  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kR, 0.8e-3, -kR), sphere_cap_volume(kR, 0.8e-3));
-  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kR, -3 * kR, -0.5e-3), sphere_cap_volume(kR, -0.5e-3));
-  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kR, 1.5e-3, 1.5e-3), 0.0);  // 1.5^2 + 1.5^2 > 2^2
-  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kR, kR, -kR), 0.0);
-  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kR, -kR, -kR), kVs);
+  EXPECT_NEAR(sphere_quadrant_volume(kSphereR, 0.0, 0.0), kSphereV / 4, 1e-15 * kSphereV);
+  EXPECT_NEAR(sphere_quadrant_volume(kSphereR, 0.8e-3, 0.0),
+              0.5 * sphere_cap_volume(kSphereR, 0.8e-3), 1e-15 * kSphereV);
+  EXPECT_NEAR(sphere_quadrant_volume(kSphereR, 0.0, -0.8e-3),
+              0.5 * (kSphereV - sphere_cap_volume(kSphereR, 0.8e-3)), 1e-15 * kSphereV);
+  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kSphereR, 0.8e-3, -kSphereR),
+                   sphere_cap_volume(kSphereR, 0.8e-3));
+  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kSphereR, -3 * kSphereR, -0.5e-3),
+                   sphere_cap_volume(kSphereR, -0.5e-3));
+  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kSphereR, 1.5e-3, 1.5e-3), 0.0);  // 1.5^2 + 1.5^2 > 2^2
+  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kSphereR, kSphereR, -kSphereR), 0.0);
+  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kSphereR, -kSphereR, -kSphereR), kSphereV);
   // Symmetric in a and b; the four quadrants of any corner sum to the sphere.
-  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kR, 0.3e-3, 1.1e-3),
-                   sphere_quadrant_volume(kR, 1.1e-3, 0.3e-3));
+  EXPECT_DOUBLE_EQ(sphere_quadrant_volume(kSphereR, 0.3e-3, 1.1e-3),
+                   sphere_quadrant_volume(kSphereR, 1.1e-3, 0.3e-3));
   for (double a : {-2.5e-3, -1.7e-3, -0.4e-3, 0.0, 0.6e-3, 1.3e-3, 2.0e-3}) {
     for (double b : {-2.1e-3, -1.2e-3, -0.1e-3, 0.5e-3, 1.6e-3, 2.4e-3}) {
-      const double four = sphere_quadrant_volume(kR, a, b) + sphere_quadrant_volume(kR, -a, b) +
-                          sphere_quadrant_volume(kR, a, -b) + sphere_quadrant_volume(kR, -a, -b);
-      EXPECT_NEAR(four, kVs, 1e-14 * kVs) << a << " " << b;
+      const double four =
+          sphere_quadrant_volume(kSphereR, a, b) + sphere_quadrant_volume(kSphereR, -a, b) +
+          sphere_quadrant_volume(kSphereR, a, -b) + sphere_quadrant_volume(kSphereR, -a, -b);
+      EXPECT_NEAR(four, kSphereV, 1e-14 * kSphereV) << a << " " << b;
     }
   }
 }
@@ -167,10 +173,10 @@ TEST(PorosityDoubleCap, MatchesNestedQuadratureForAllSigns) {
                          0.05e-3, 0.7e-3,  1.4e-3,   1.95e-3, 2.0e-3,  2.3e-3};
   for (double a : vals) {
     for (double b : vals) {
-      const double exact = sphere_quadrant_volume(kR, a, b);
-      const double numeric = quadrature_quadrant(kR, a, b);
-      EXPECT_NEAR(exact, numeric, 1e-12 * kVs) << "a = " << a << ", b = " << b;
-      if (numeric > 1e-3 * kVs) {
+      const double exact = sphere_quadrant_volume(kSphereR, a, b);
+      const double numeric = quadrature_quadrant(kSphereR, a, b);
+      EXPECT_NEAR(exact, numeric, 1e-12 * kSphereV) << "a = " << a << ", b = " << b;
+      if (numeric > 1e-3 * kSphereV) {
         EXPECT_NEAR(exact, numeric, 1e-12 * numeric) << "a = " << a << ", b = " << b;
       }
     }
@@ -180,33 +186,33 @@ TEST(PorosityDoubleCap, MatchesNestedQuadratureForAllSigns) {
 TEST(PorosityCell, SphereInsideOneCellPutsItsWholeVolumeThere) {
   const GasGrid g;  // 15 x 45 cells of 10 mm x 20 mm
   std::vector<double> solid(g.cells(), 0.0);
-  add_particle_volume(g, 0.035, 0.05, kR, solid);  // column 3 (30-40 mm), row 2 (40-60 mm)
-  EXPECT_DOUBLE_EQ(solid[g.index(3, 2)], kVs);
+  add_particle_volume(g, 0.035, 0.05, kSphereR, solid);  // column 3 (30-40 mm), row 2 (40-60 mm)
+  EXPECT_DOUBLE_EQ(solid[g.index(3, 2)], kSphereV);
   EXPECT_EQ(count_nonzero(solid), 1);
   // Touching a line from inside (distance exactly R is not a cut).
   std::vector<double> touch(g.cells(), 0.0);
-  add_particle_volume(g, 0.032, 0.05, kR, touch);
-  EXPECT_NEAR(touch[g.index(3, 2)], kVs, 1e-15 * kVs);
-  EXPECT_NEAR(sum(touch), kVs, 1e-15 * kVs);
+  add_particle_volume(g, 0.032, 0.05, kSphereR, touch);
+  EXPECT_NEAR(touch[g.index(3, 2)], kSphereV, 1e-15 * kSphereV);
+  EXPECT_NEAR(sum(touch), kSphereV, 1e-15 * kSphereV);
 }
 
 TEST(PorosityCell, AcrossAVerticalFaceTheSharesAreCaps) {
   const GasGrid g;
   // Centre 0.5 mm left of x = 40 mm: a cap of height h = 1.5 mm goes into column 4.
   std::vector<double> solid(g.cells(), 0.0);
-  add_particle_volume(g, 0.0395, 0.05, kR, solid);
-  const double cap = textbook_cap(kR, 1.5e-3);
+  add_particle_volume(g, 0.0395, 0.05, kSphereR, solid);
+  const double cap = textbook_cap(kSphereR, 1.5e-3);
   EXPECT_NEAR(solid[g.index(4, 2)], cap, 1e-12 * cap);
-  EXPECT_NEAR(solid[g.index(3, 2)], kVs - cap, 1e-12 * (kVs - cap));
-  EXPECT_NEAR(sum(solid), kVs, 1e-12 * kVs);
+  EXPECT_NEAR(solid[g.index(3, 2)], kSphereV - cap, 1e-12 * (kSphereV - cap));
+  EXPECT_NEAR(sum(solid), kSphereV, 1e-12 * kSphereV);
   EXPECT_EQ(count_nonzero(solid), 2);
   // Centre 1.2 mm right of x = 30 mm: a cap of height 0.8 mm goes into column 2.
   std::vector<double> left(g.cells(), 0.0);
-  add_particle_volume(g, 0.0312, 0.05, kR, left);
-  const double cap2 = textbook_cap(kR, 0.8e-3);
+  add_particle_volume(g, 0.0312, 0.05, kSphereR, left);
+  const double cap2 = textbook_cap(kSphereR, 0.8e-3);
   EXPECT_NEAR(left[g.index(2, 2)], cap2, 1e-12 * cap2);
-  EXPECT_NEAR(left[g.index(3, 2)], kVs - cap2, 1e-12 * (kVs - cap2));
-  EXPECT_NEAR(sum(left), kVs, 1e-12 * kVs);
+  EXPECT_NEAR(left[g.index(3, 2)], kSphereV - cap2, 1e-12 * (kSphereV - cap2));
+  EXPECT_NEAR(sum(left), kSphereV, 1e-12 * kSphereV);
   EXPECT_EQ(count_nonzero(left), 2);
 }
 
@@ -214,18 +220,18 @@ TEST(PorosityCell, AcrossAHorizontalFaceTheSharesAreCaps) {
   const GasGrid g;
   // Centre 0.3 mm above y = 60 mm (row 3): a cap of height 1.7 mm goes into row 2.
   std::vector<double> solid(g.cells(), 0.0);
-  add_particle_volume(g, 0.075, 0.0603, kR, solid);
-  const double cap = textbook_cap(kR, 1.7e-3);
+  add_particle_volume(g, 0.075, 0.0603, kSphereR, solid);
+  const double cap = textbook_cap(kSphereR, 1.7e-3);
   EXPECT_NEAR(solid[g.index(7, 2)], cap, 1e-12 * cap);
-  EXPECT_NEAR(solid[g.index(7, 3)], kVs - cap, 1e-12 * (kVs - cap));
-  EXPECT_NEAR(sum(solid), kVs, 1e-12 * kVs);
+  EXPECT_NEAR(solid[g.index(7, 3)], kSphereV - cap, 1e-12 * (kSphereV - cap));
+  EXPECT_NEAR(sum(solid), kSphereV, 1e-12 * kSphereV);
   // Centre 1.9 mm below y = 80 mm (row 3): a cap of height 0.1 mm goes into row 4.
   std::vector<double> up(g.cells(), 0.0);
-  add_particle_volume(g, 0.075, 0.0781, kR, up);
-  const double cap2 = textbook_cap(kR, 0.1e-3);
+  add_particle_volume(g, 0.075, 0.0781, kSphereR, up);
+  const double cap2 = textbook_cap(kSphereR, 0.1e-3);
   EXPECT_NEAR(up[g.index(7, 4)], cap2, 1e-12 * cap2);
-  EXPECT_NEAR(up[g.index(7, 3)], kVs - cap2, 1e-12 * (kVs - cap2));
-  EXPECT_NEAR(sum(up), kVs, 1e-12 * kVs);
+  EXPECT_NEAR(up[g.index(7, 3)], kSphereV - cap2, 1e-12 * (kSphereV - cap2));
+  EXPECT_NEAR(sum(up), kSphereV, 1e-12 * kSphereV);
 }
 
 TEST(PorosityCell, AcrossACornerTheFourSharesMatchQuadrature) {
@@ -238,18 +244,18 @@ TEST(PorosityCell, AcrossACornerTheFourSharesMatchQuadrature) {
   for (const auto& o : offsets) {
     const double x = 0.04 + o[0], y = 0.06 + o[1];
     std::vector<double> solid(g.cells(), 0.0);
-    add_particle_volume(g, x, y, kR, solid);
+    add_particle_volume(g, x, y, kSphereR, solid);
     // Quadrant of cell (i, j) seen from the centre: x > 0.04 - x for the right column, etc.
     const double ax = 0.04 - x, ay = 0.06 - y;
-    const double right_top = quadrature_quadrant(kR, ax, ay);
-    const double left_top = quadrature_quadrant(kR, -ax, ay);
-    const double right_bottom = quadrature_quadrant(kR, ax, -ay);
-    const double left_bottom = quadrature_quadrant(kR, -ax, -ay);
-    EXPECT_NEAR(solid[g.index(4, 3)], right_top, 1e-12 * kVs) << o[0] << " " << o[1];
-    EXPECT_NEAR(solid[g.index(3, 3)], left_top, 1e-12 * kVs) << o[0] << " " << o[1];
-    EXPECT_NEAR(solid[g.index(4, 2)], right_bottom, 1e-12 * kVs) << o[0] << " " << o[1];
-    EXPECT_NEAR(solid[g.index(3, 2)], left_bottom, 1e-12 * kVs) << o[0] << " " << o[1];
-    EXPECT_NEAR(sum(solid), kVs, 1e-12 * kVs);
+    const double right_top = quadrature_quadrant(kSphereR, ax, ay);
+    const double left_top = quadrature_quadrant(kSphereR, -ax, ay);
+    const double right_bottom = quadrature_quadrant(kSphereR, ax, -ay);
+    const double left_bottom = quadrature_quadrant(kSphereR, -ax, -ay);
+    EXPECT_NEAR(solid[g.index(4, 3)], right_top, 1e-12 * kSphereV) << o[0] << " " << o[1];
+    EXPECT_NEAR(solid[g.index(3, 3)], left_top, 1e-12 * kSphereV) << o[0] << " " << o[1];
+    EXPECT_NEAR(solid[g.index(4, 2)], right_bottom, 1e-12 * kSphereV) << o[0] << " " << o[1];
+    EXPECT_NEAR(solid[g.index(3, 2)], left_bottom, 1e-12 * kSphereV) << o[0] << " " << o[1];
+    EXPECT_NEAR(sum(solid), kSphereV, 1e-12 * kSphereV);
   }
 }
 
@@ -258,18 +264,19 @@ TEST(PorosityCell, CentreOnACornerGivesFourQuarters) {
   for (int i : {1, 3, 7, 14}) {
     for (int j : {1, 3, 44}) {
       std::vector<double> solid(g.cells(), 0.0);
-      add_particle_volume(g, i * g.dx(), j * g.dy(), kR, solid);
+      add_particle_volume(g, i * g.dx(), j * g.dy(), kSphereR, solid);
       for (int ci : {i - 1, i}) {
-        for (int cj : {j - 1, j}) EXPECT_NEAR(solid[g.index(ci, cj)], kVs / 4, 1e-14 * kVs);
+        for (int cj : {j - 1, j})
+          EXPECT_NEAR(solid[g.index(ci, cj)], kSphereV / 4, 1e-14 * kSphereV);
       }
       EXPECT_EQ(count_nonzero(solid), 4);
     }
   }
   // On a vertical line (not a corner): two halves.
   std::vector<double> half(g.cells(), 0.0);
-  add_particle_volume(g, 5 * g.dx(), 0.05, kR, half);
-  EXPECT_NEAR(half[g.index(4, 2)], kVs / 2, 1e-14 * kVs);
-  EXPECT_NEAR(half[g.index(5, 2)], kVs / 2, 1e-14 * kVs);
+  add_particle_volume(g, 5 * g.dx(), 0.05, kSphereR, half);
+  EXPECT_NEAR(half[g.index(4, 2)], kSphereV / 2, 1e-14 * kSphereV);
+  EXPECT_NEAR(half[g.index(5, 2)], kSphereV / 2, 1e-14 * kSphereV);
 }
 
 TEST(PorosityCell, PartBeyondAWallStaysInTheEdgeCell) {
@@ -278,25 +285,25 @@ TEST(PorosityCell, PartBeyondAWallStaysInTheEdgeCell) {
   const struct {
     double x, y;
     int i, j;
-  } cases[] = {{kR - overlap, 0.05, 0, 2},               // left wall
-               {g.width - kR + overlap, 0.05, 14, 2},    // right wall
-               {0.075, kR - overlap, 7, 0},              // bottom wall
-               {0.075, g.height - kR + overlap, 7, 44},  // top (open exit)
-               {kR - overlap, kR - overlap, 0, 0},       // bottom-left corner
-               {g.width - kR + overlap, g.height - kR, 14, 44}};
+  } cases[] = {{kSphereR - overlap, 0.05, 0, 2},                // left wall
+               {g.width - kSphereR + overlap, 0.05, 14, 2},     // right wall
+               {0.075, kSphereR - overlap, 7, 0},               // bottom wall
+               {0.075, g.height - kSphereR + overlap, 7, 44},   // top (open exit)
+               {kSphereR - overlap, kSphereR - overlap, 0, 0},  // bottom-left corner
+               {g.width - kSphereR + overlap, g.height - kSphereR, 14, 44}};
   for (const auto& c : cases) {
     std::vector<double> solid(g.cells(), 0.0);
-    add_particle_volume(g, c.x, c.y, kR, solid);
-    EXPECT_DOUBLE_EQ(solid[g.index(c.i, c.j)], kVs) << c.x << " " << c.y;
+    add_particle_volume(g, c.x, c.y, kSphereR, solid);
+    EXPECT_DOUBLE_EQ(solid[g.index(c.i, c.j)], kSphereV) << c.x << " " << c.y;
     EXPECT_EQ(count_nonzero(solid), 1);
   }
   // At the left wall and across the horizontal line y = 40 mm: split in y only, caps as usual.
   std::vector<double> solid(g.cells(), 0.0);
-  add_particle_volume(g, kR - overlap, 0.0405, kR, solid);
-  const double cap = textbook_cap(kR, 1.5e-3);
+  add_particle_volume(g, kSphereR - overlap, 0.0405, kSphereR, solid);
+  const double cap = textbook_cap(kSphereR, 1.5e-3);
   EXPECT_NEAR(solid[g.index(0, 1)], cap, 1e-12 * cap);
-  EXPECT_NEAR(solid[g.index(0, 2)], kVs - cap, 1e-12 * kVs);
-  EXPECT_NEAR(sum(solid), kVs, 1e-12 * kVs);
+  EXPECT_NEAR(solid[g.index(0, 2)], kSphereV - cap, 1e-12 * kSphereV);
+  EXPECT_NEAR(sum(solid), kSphereV, 1e-12 * kSphereV);
 }
 
 TEST(PorosityField, PeriodicArrangementGivesUniformPorosity) {
@@ -312,7 +319,8 @@ TEST(PorosityField, PeriodicArrangementGivesUniformPorosity) {
     for (int j = 0; j < g.ny; ++j) {
       for (double px : {2.5e-3, 7.5e-3}) {
         for (double py : {2.5e-3, 7.5e-3, 12.5e-3, 17.5e-3}) {
-          add_particle_volume(g, i * g.dx() + px + 2.1e-3, j * g.dy() + py + 1.3e-3, kR, solid);
+          add_particle_volume(g, i * g.dx() + px + 2.1e-3, j * g.dy() + py + 1.3e-3, kSphereR,
+                              solid);
           ++n;
         }
       }
@@ -321,12 +329,12 @@ TEST(PorosityField, PeriodicArrangementGivesUniformPorosity) {
   std::vector<double> eps;
   porosity_from_solid(g, solid, eps);
   ASSERT_EQ(eps.size(), static_cast<std::size_t>(g.cells()));
-  const double expected = 1.0 - 8.0 * kVs / (0.01 * 0.02 * 0.004);
+  const double expected = 1.0 - 8.0 * kSphereV / (0.01 * 0.02 * 0.004);
   EXPECT_NEAR(expected, 0.664897, 1e-6);
   for (int i = 1; i + 1 < g.nx; ++i) {
     for (int j = 1; j + 1 < g.ny; ++j) EXPECT_NEAR(eps[g.index(i, j)], expected, 1e-12);
   }
-  EXPECT_NEAR(sum(solid), n * kVs, 1e-12 * n * kVs);
+  EXPECT_NEAR(sum(solid), n * kSphereV, 1e-12 * n * kSphereV);
   // An empty grid has eps = 1 everywhere.
   std::vector<double> none(g.cells(), 0.0);
   porosity_from_solid(g, none, eps);

@@ -18,8 +18,6 @@ using fluidbed::WelchSettings;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Standard normal samples (Box-Muller on the platform-independent generator).
 std::vector<double> gaussian_noise(std::size_t n, std::uint64_t seed) {
   fluidbed::SplitMix64 rng(seed);
@@ -27,8 +25,8 @@ std::vector<double> gaussian_noise(std::size_t n, std::uint64_t seed) {
   for (std::size_t k = 0; k < n; k += 2) {
     const double u = 1.0 - rng.uniform(), w = rng.uniform();
     const double r = std::sqrt(-2.0 * std::log(u));
-    v[k] = r * std::cos(2.0 * kPi * w);
-    if (k + 1 < n) v[k + 1] = r * std::sin(2.0 * kPi * w);
+    v[k] = r * std::cos(2.0 * std::numbers::pi * w);
+    if (k + 1 < n) v[k + 1] = r * std::sin(2.0 * std::numbers::pi * w);
   }
   return v;
 }
@@ -44,7 +42,8 @@ TEST(Spectrum, FftMatchesTheDirectSum) {
     std::complex<double> s = 0.0;
     for (std::size_t t = 0; t < n; ++t)
       s += std::complex<double>(x_re[t], x_im[t]) *
-           std::polar(1.0, -2.0 * kPi * static_cast<double>(k * t) / static_cast<double>(n));
+           std::polar(
+               1.0, -2.0 * std::numbers::pi * static_cast<double>(k * t) / static_cast<double>(n));
     EXPECT_NEAR(re[k], s.real(), 1e-12);
     EXPECT_NEAR(im[k], s.imag(), 1e-12);
   }
@@ -60,8 +59,8 @@ TEST(Spectrum, SinePlusNoiseFindsItsFrequencyWithinOneBin) {
   std::vector<double> dp(12000);
   for (std::size_t k = 0; k < dp.size(); ++k) {
     const double t = static_cast<double>(k) * h;
-    dp[k] = 3550.0 + 300.0 * std::sin(2.0 * kPi * f0 * t) + 300.0 * noise[k] +
-            600.0 * std::sin(2.0 * kPi * 0.2 * t);
+    dp[k] = 3550.0 + 300.0 * std::sin(2.0 * std::numbers::pi * f0 * t) + 300.0 * noise[k] +
+            600.0 * std::sin(2.0 * std::numbers::pi * 0.2 * t);
   }
   const PowerSpectrum p = welch_spectrum(dp, h);
   ASSERT_TRUE(p.ok);
@@ -101,7 +100,8 @@ TEST(Spectrum, ShortSeriesIsOneSegmentAndPeaksBelowTheCutAreIgnored) {
   std::vector<double> y(1500);
   for (std::size_t k = 0; k < y.size(); ++k) {
     const double t = 1e-3 * static_cast<double>(k);
-    y[k] = 5.0 * std::sin(2.0 * kPi * 0.4 * t) + std::sin(2.0 * kPi * 6.0 * t);
+    y[k] = 5.0 * std::sin(2.0 * std::numbers::pi * 0.4 * t) +
+           std::sin(2.0 * std::numbers::pi * 6.0 * t);
   }
   const PowerSpectrum p = welch_spectrum(y, 1e-3);
   ASSERT_TRUE(p.ok);

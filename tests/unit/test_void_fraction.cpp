@@ -25,9 +25,8 @@ using fluidbed::VoidFractionField;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kR = 0.002;  // m, the paper's particle radius
-const double kVs = 4.0 / 3.0 * kPi * kR * kR * kR;
+constexpr double kRadius = 0.002;  // m, the paper's particle radius
+const double kSphereVolume = 4.0 / 3.0 * std::numbers::pi * kRadius * kRadius * kRadius;
 
 FineGrid paper_grid() {
   return make_fine_grid(0.15, 0.9, 0.004, 0.002, 0.004);
@@ -74,17 +73,19 @@ TEST(VoidFraction, SharesMatchQuadratureOfTheSphere) {
       {0.051, 0.101}, {0.0500, 0.1013}, {0.0503, 0.1007}, {0.0517, 0.0994}};
   for (const auto& c : centres) {
     std::vector<double> solid(static_cast<std::size_t>(g.cells()), 0.0);
-    add_sphere_to_fine_grid(g, c[0], c[1], kR, solid);
-    const int i0 = static_cast<int>((c[0] - kR) / g.dx), j0 = static_cast<int>((c[1] - kR) / g.dy);
+    add_sphere_to_fine_grid(g, c[0], c[1], kRadius, solid);
+    const int i0 = static_cast<int>((c[0] - kRadius) / g.dx),
+              j0 = static_cast<int>((c[1] - kRadius) / g.dy);
     double sum = 0.0;
     for (int j = j0; j <= j0 + 3; ++j)
       for (int i = i0; i <= i0 + 3; ++i) {
-        const double expected =
-            quadrature_share(c[0], c[1], kR, i * g.dx, (i + 1) * g.dx, j * g.dy, (j + 1) * g.dy);
-        EXPECT_NEAR(solid[g.index(i, j)], expected, 2e-4 * kVs) << "cell " << i << "," << j;
+        const double expected = quadrature_share(c[0], c[1], kRadius, i * g.dx, (i + 1) * g.dx,
+                                                 j * g.dy, (j + 1) * g.dy);
+        EXPECT_NEAR(solid[g.index(i, j)], expected, 2e-4 * kSphereVolume)
+            << "cell " << i << "," << j;
         sum += solid[g.index(i, j)];
       }
-    EXPECT_NEAR(sum, kVs, 1e-13 * kVs);
+    EXPECT_NEAR(sum, kSphereVolume, 1e-13 * kSphereVolume);
   }
 }
 
@@ -96,24 +97,25 @@ TEST(VoidFraction, SharesSumToTheSphereAtWallsCornersAndOutside) {
     const double x = -0.003 + 0.156 * rng.uniform();
     const double y = -0.003 + 0.906 * rng.uniform();
     std::vector<double> solid(static_cast<std::size_t>(g.cells()), 0.0);
-    add_sphere_to_fine_grid(g, x, y, kR, solid);
+    add_sphere_to_fine_grid(g, x, y, kRadius, solid);
     double sum = 0.0;
     for (double v : solid) {
-      EXPECT_GT(v, -1e-15 * kVs);
+      EXPECT_GT(v, -1e-15 * kSphereVolume);
       sum += v;
     }
-    ASSERT_NEAR(sum, kVs, 1e-12 * kVs) << "at " << x << ", " << y;
+    ASSERT_NEAR(sum, kSphereVolume, 1e-12 * kSphereVolume) << "at " << x << ", " << y;
   }
   // A sphere overlapping the left wall by 1 mm: the part beyond the wall stays in column 0.
   std::vector<double> solid(static_cast<std::size_t>(g.cells()), 0.0);
-  add_sphere_to_fine_grid(g, 0.001, 0.101, kR, solid);
+  add_sphere_to_fine_grid(g, 0.001, 0.101, kRadius, solid);
   double column1 = 0.0, column0 = 0.0;
   for (int j = 0; j < g.ny; ++j) {
     column0 += solid[g.index(0, j)];
     column1 += solid[g.index(1, j)];
   }
-  EXPECT_NEAR(column1, quadrature_share(0.001, 0.101, kR, 0.002, 0.004, 0.098, 0.104), 2e-4 * kVs);
-  EXPECT_NEAR(column0 + column1, kVs, 1e-13 * kVs);
+  EXPECT_NEAR(column1, quadrature_share(0.001, 0.101, kRadius, 0.002, 0.004, 0.098, 0.104),
+              2e-4 * kSphereVolume);
+  EXPECT_NEAR(column0 + column1, kSphereVolume, 1e-13 * kSphereVolume);
 }
 
 TEST(VoidFraction, PackedHexagonalLayerSitsAtItsPackingLimit) {
@@ -131,15 +133,15 @@ TEST(VoidFraction, PackedHexagonalLayerSitsAtItsPackingLimit) {
       sum += f.at(i, j);
       ++n;
     }
-  const double packing = 1.0 - kPi / (2.0 * std::sqrt(3.0)) * 2.0 / 3.0;
+  const double packing = 1.0 - std::numbers::pi / (2.0 * std::sqrt(3.0)) * 2.0 / 3.0;
   EXPECT_NEAR(sum / n, packing, 0.01);
   // The total solid is every sphere's volume (no share lost).
   double solid = 0.0;
   for (double e : f.eps) solid += (1.0 - e) * f.grid.cell_area() * f.grid.thickness;
-  EXPECT_NEAR(solid, static_cast<double>(p.size()) * kVs,
-              1e-9 * static_cast<double>(p.size()) * kVs);
+  EXPECT_NEAR(solid, static_cast<double>(p.size()) * kSphereVolume,
+              1e-9 * static_cast<double>(p.size()) * kSphereVolume);
   // Above the bed: nothing; top_row is one past the highest row a sphere reaches.
-  const double top = *std::max_element(p.y.begin(), p.y.end()) + kR;
+  const double top = *std::max_element(p.y.begin(), p.y.end()) + kRadius;
   EXPECT_EQ(f.top_row, static_cast<int>(top / f.grid.dy) + 1);
   for (int i = 0; i < f.grid.nx; ++i) EXPECT_EQ(f.at(i, f.top_row), 1.0);
 }
@@ -168,7 +170,7 @@ TEST(VoidFraction, WindowAverageIsTheExactVolumeFractionOfTheWindow) {
     const double y0 = std::max(0.0, (j - 2) * 0.002), y1 = (j + 3) * 0.002;
     double solid = 0.0;
     for (std::size_t k = 0; k < q.size(); ++k)
-      solid += quadrature_share(q.x[k], q.y[k], kR, x0, x1, y0, y1, 400);
+      solid += quadrature_share(q.x[k], q.y[k], kRadius, x0, x1, y0, y1, 400);
     EXPECT_NEAR(f.window_at(i, j), 1.0 - solid / ((x1 - x0) * (y1 - y0) * 0.004), 2e-4)
         << "cell " << i << "," << j;
   }
@@ -186,7 +188,7 @@ TEST(VoidFraction, WindowAverageIsTheExactVolumeFractionOfTheWindow) {
       ++n;
     }
   const double mean = sum / n;
-  const double packing = 1.0 - kPi / (2.0 * std::sqrt(3.0)) * 2.0 / 3.0;
+  const double packing = 1.0 - std::numbers::pi / (2.0 * std::sqrt(3.0)) * 2.0 / 3.0;
   EXPECT_NEAR(mean, packing, 0.01);
   const double window_spread = std::sqrt(sum2 / n - mean * mean);
   const double cell_spread = std::sqrt(cell_sum2 / n - mean * mean);

@@ -12,7 +12,7 @@ using namespace fluidbed;
 
 namespace {
 
-Settings small_bed() {
+Settings determinism_bed() {
   Settings s;
   s.scene.kind = SceneKind::Packing;
   s.domain.width = 0.06;
@@ -30,11 +30,11 @@ std::uint64_t run_steps(Simulation& sim, int n) {
 }  // namespace
 
 TEST(Determinism, SameSceneSameHash) {
-  Simulation a(small_bed()), b(small_bed());
+  Simulation a(determinism_bed()), b(determinism_bed());
   const auto ha = run_steps(a, 8000), hb = run_steps(b, 8000);
   EXPECT_EQ(ha, hb);
   EXPECT_GT(a.dem().diagnostics().pair_contacts, 50);  // the particles have landed and touch
-  Settings other = small_bed();
+  Settings other = determinism_bed();
   other.particles.seed = 8;
   Simulation c(other);
   EXPECT_NE(run_steps(c, 8000), ha);
@@ -42,7 +42,7 @@ TEST(Determinism, SameSceneSameHash) {
 
 TEST(Determinism, SaveLoadContinueIsBitExact) {
   for (const char* integrator : {"newmark", "velocity_verlet", "symplectic_euler"}) {
-    Settings s = small_bed();
+    Settings s = determinism_bed();
     s.time.integrator = parse_option<Integrator>("time.integrator", integrator);
     Simulation straight(s);
     const auto expected = run_steps(straight, 8000);
@@ -62,7 +62,7 @@ TEST(Determinism, SaveLoadContinueIsBitExact) {
 
 TEST(Determinism, CoupledSaveLoadContinueIsBitExact) {
   // Particles, gas and coupling together: a jetted bed of 300 spheres, gas every other step.
-  Settings s = small_bed();
+  Settings s = determinism_bed();
   s.domain.width = 0.15;
   s.domain.height = 0.9;
   s.particles.fill_height = 0.2;
@@ -87,7 +87,7 @@ TEST(Determinism, SameBitsForOneAndTwoThreads) {
   // The particle step gathers pair forces in a fixed order, and sums over particles (energy,
   // porosity, drag per cell) are taken block by block and added in block order: the thread count
   // changes the speed, not a bit of the result. 600 particles: 10 blocks, split unevenly by work.
-  Settings s = small_bed();
+  Settings s = determinism_bed();
   s.domain.width = 0.15;
   s.domain.height = 0.9;
   s.particles.count = 600;
@@ -106,7 +106,7 @@ TEST(Determinism, SameBitsForOneAndTwoThreads) {
 TEST(Determinism, StateFileRejectsGarbage) {
   const auto dir = fluidbed::testing::temp_dir("garbage");
   fluidbed::testing::write_file(dir / "bad.state", "not a state");
-  Simulation sim(small_bed());
+  Simulation sim(determinism_bed());
   EXPECT_THROW(sim.load_state((dir / "bad.state").string()), InputError);
   EXPECT_THROW(sim.load_state((dir / "missing.state").string()), InputError);
 }
@@ -115,7 +115,7 @@ TEST(Determinism, StateWithoutLidStartsASceneWithOne) {
   // A bed packed open at the top starts a scene with a top wall (the teaching scene's screen):
   // the top wall's history starts empty and the particles continue exactly as in the open bed
   // while none of them reaches the lid.
-  Settings s = small_bed();
+  Settings s = determinism_bed();
   s.domain.height = 0.3;
   Simulation packed(s);
   run_steps(packed, 3000);

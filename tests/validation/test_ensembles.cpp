@@ -26,7 +26,7 @@ namespace {
 // lattice 0.3 m high (a bed about 17 cm high, so that the solid fraction's band, 2 cm to 3 cm
 // below the top, holds many rows), at the teaching scene's contact stiffness, step and gas
 // settings (cheap), averaging from 0.05 s.
-std::string small_bed() {
+std::string small_bed_args() {
   return "run " + std::string(FLUIDBED_ASSET_DIR) +
          "/scenes/xu_yu_1997.toml --set particles.count=600 --set domain.width=0.05 "
          "--set gas.cells_x=5 --set particles.fill_height=0.3 "
@@ -111,8 +111,8 @@ TEST(Ensembles, SeedListsAndStatistics) {
 TEST(Ensembles, EachSeedItsOwnPackingAndTheSameSeedTheSameBits) {
   const auto dir = temp_dir("ensemble-packings");
   // Two packings, side by side.
-  const auto r = run_fluidbed(small_bed() + " --seeds 2 --until 0 --out " + (dir / "e").string(),
-                              "ensemble-packings");
+  const auto r = run_fluidbed(
+      small_bed_args() + " --seeds 2 --until 0 --out " + (dir / "e").string(), "ensemble-packings");
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json top = read_json(dir / "e" / "summary.json");
   ASSERT_EQ(top["seeds"], nlohmann::json({1, 2})) << top.dump();
@@ -125,16 +125,17 @@ TEST(Ensembles, EachSeedItsOwnPackingAndTheSameSeedTheSameBits) {
   EXPECT_LT(std::abs(ha - hb), 0.02 * ha) << ha << " " << hb;
   EXPECT_LT(std::abs(fa - fb), 0.02 * fa) << fa << " " << fb;
   // The first seed is the scene's own: the run without --seeds, bit for bit.
-  const auto plain =
-      run_fluidbed(small_bed() + " --until 0 --out " + (dir / "plain").string(), "ensemble-plain");
+  const auto plain = run_fluidbed(small_bed_args() + " --until 0 --out " + (dir / "plain").string(),
+                                  "ensemble-plain");
   ASSERT_EQ(plain.status, 0) << plain.err;
   EXPECT_EQ(read_json(dir / "plain" / "summary.json")["state_hash"], a["state_hash"]);
   // The same seed packed again from nothing (a fresh cache) gives the same bits.
   const auto cache = dir / "cache";
   std::filesystem::create_directories(cache);
   ::setenv("FLUIDBED_CACHE", cache.c_str(), 1);
-  const auto again = run_fluidbed(
-      small_bed() + " --seeds 2,5 --until 0 --out " + (dir / "again").string(), "ensemble-again");
+  const auto again =
+      run_fluidbed(small_bed_args() + " --seeds 2,5 --until 0 --out " + (dir / "again").string(),
+                   "ensemble-again");
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_EQ(read_json(dir / "again" / "seeds" / "2" / "summary.json")["state_hash"],
             b["state_hash"]);
@@ -145,8 +146,8 @@ TEST(Ensembles, EachSeedItsOwnPackingAndTheSameSeedTheSameBits) {
 
 TEST(Ensembles, SummaryHoldsTheMeanAndSpreadOfTheSeeds) {
   const auto dir = temp_dir("ensemble-stats");
-  const auto r = run_fluidbed(small_bed() + " --seeds 3 --until 0.1 --plots --out " + dir.string(),
-                              "ensemble-stats");
+  const auto r = run_fluidbed(
+      small_bed_args() + " --seeds 3 --until 0.1 --plots --out " + dir.string(), "ensemble-stats");
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json top = read_json(dir / "summary.json");
   const nlohmann::json& e = top["ensemble"];
