@@ -288,9 +288,7 @@ ReproduceArgs resumed_reproduce_args(const ReproduceArgs& given) {
   if (given.options_given)
     throw InputError(head + "a resumed report takes --quick, --seeds and --set from "
                             "DIR/reproduce.json (give only --resume DIR and, if wanted, --threads)");
-  if (!given.out.empty() &&
-      fs::absolute(given.out).lexically_normal() != fs::absolute(given.resume).lexically_normal())
-    throw InputError(head + "--out " + given.out + " is not the report's folder");
+  check_resume_out(given.out, given.resume, head, "report");
   if (!fs::is_directory(given.resume)) throw InputError(head + "not a folder");
   std::ifstream in(fs::path(given.resume) / "reproduce.json");
   if (!in) throw InputError(head + "no report to resume there (no reproduce.json)");
@@ -587,8 +585,7 @@ int reproduce_command(const ReproduceArgs& given) {
   } catch (const Interrupted&) {
     const std::string out = given.resume.empty() ? (given.out.empty() ? "out/reproduce" : given.out)
                                                  : given.resume;
-    std::fprintf(stderr, "interrupted (%s); resume with: fluidbed reproduce --resume %s\n",
-                 InterruptGuard::name(InterruptGuard::received()), out.c_str());
+    say_interrupted("fluidbed reproduce --resume " + out);
     return 130;
   }
 }
