@@ -260,11 +260,17 @@ PointRun measure_point(const Options& o, const Settings& s, double until, RunOpt
 }  // namespace
 
 nlohmann::json run_definition(const char* kind, const Settings& s, double until) {
+  // A start state counts by its bytes, not where it is (a study's folder may move).
+  Settings named = s;
+  std::string start;
+  if (s.particles.placement == Placement::State) {
+    start = file_digest(s.particles.state_file);
+    named.particles.state_file.clear();
+  }
   return {{"point", kind},
-          {"scene", to_toml(s)},
+          {"scene", to_toml(named)},
           {"threads", s.threads},
-          {"start_state",
-           s.particles.placement == Placement::State ? file_digest(s.particles.state_file) : ""},
+          {"start_state", start},
           {"until", until}};
 }
 

@@ -107,7 +107,7 @@ nlohmann::json stored_point(const Options& o, const nlohmann::json& what, bool r
 // when it cannot be read.
 std::string file_digest(const std::string& path);
 // What defines a run of `s` to `until` (s) for stored_point: KIND, the settings as TOML, the
-// threads inside a step and the bytes of a start state.
+// threads inside a step and the bytes of a start state (not its path).
 nlohmann::json run_definition(const char* kind, const Settings& s, double until);
 // Throws Interrupted when o.stop says so (before a point).
 void stop_if_asked(const Options& o);
