@@ -105,6 +105,7 @@ Report run_study(const Info& info, const Options& o) {
   }
   for (const char* f : {"study.csv", "summary.md", "report.json"})  // a finished study's
     fs::remove(fs::path(o.out) / f, ec);
+  fs::create_directories(points_dir(o), ec);  // before the points' threads write into it
   const auto start = std::chrono::steady_clock::now();
   Options safe = o;  // the log, for the points' threads
   std::mutex log_mutex;
@@ -214,7 +215,8 @@ nlohmann::json stored_point(const Options& o, const nlohmann::json& what, bool r
   stop_if_asked(o);
   const std::string text = nlohmann::json{{"what", what}, {"result", compute()}}.dump();
   if (!o.out.empty()) {
-    fs::create_directories(file.parent_path());
+    std::error_code ec;  // write_text says when the folder is not there
+    fs::create_directories(file.parent_path(), ec);
     write_text(file.string(), text + "\n");
   }
   return nlohmann::json::parse(text).at("result");
