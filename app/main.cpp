@@ -187,6 +187,10 @@ int main(int argc, char** argv) {
   study->add_option("--size", study_args.size, "full (default) or tiny (seconds, a small bed)")
       ->check(CLI::IsMember({"full", "tiny"}));
   study->add_flag("--quick", study_args.quick, "the same as --size tiny");
+  study->add_option("--resume", study_args.resume,
+                    "finish the study in folder DIR (interrupted or killed): its finished points "
+                    "are read back, the rest measured; the same NAME and --size as it was started "
+                    "with");
   study->add_option("--jobs", study_args.jobs, "points at once (default: one per core)")
       ->check(CLI::NonNegativeNumber);
 

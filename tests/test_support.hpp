@@ -1,11 +1,16 @@
 #pragma once
 // Small helpers shared by the test binaries.
+#include <signal.h>
 #include <sys/wait.h>
 
 #include <array>
 #include <cmath>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <thread>
+#include <vector>
 #include <string>
 
 #include <unistd.h>
@@ -91,6 +96,78 @@ inline CommandResult run_fluidbed(const std::string& args, const std::string& ta
   const int raw = std::system(cmd.c_str());
   const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return {status, read_file(dir / "err.txt"), read_file(dir / "out.txt")};
+}
+
+// One line of a CSV file: its values, quotes removed ("" inside quotes is a quote).
+inline std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false;
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const char c = line[k];
+    if (quoted) {
+      if (c == '"' && k + 1 < line.size() && line[k + 1] == '"') {
+        cur += '"';
+        ++k;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        cur += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+// `fluidbed ARGS` in the background (its stdout in DIR/out.txt, its stderr in DIR/err.txt), sent
+// SIGNAL (SIGTERM unless told) as soon as `ready()` says so (asked every 20 ms). Its exit status, and whether the
+// signal was sent before it ended by itself.
+struct TerminatedRun {
+  int status = -1;  // -1: ended by a signal
+  bool terminated = false;
+};
+inline TerminatedRun fluidbed_terminated(const std::string& args, const std::filesystem::path& dir,
+                                         const std::function<bool()>& ready,
+                                         int sig = SIGTERM) {
+  const std::string cmd = "exec \"" + std::string(FLUIDBED_BINARY) + "\" " + args + " > \"" +
+                          (dir / "out.txt").string() + "\" 2> \"" + (dir / "err.txt").string() +
+                          "\"";
+  TerminatedRun r;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  if (pid < 0) return r;
+  int raw = 0;
+  while (::waitpid(pid, &raw, WNOHANG) == 0) {
+    if (ready()) {
+      ::kill(pid, sig);
+      r.terminated = true;
+      ::waitpid(pid, &raw, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+// For fluidbed_terminated: true once `seconds` have passed since it was made.
+inline std::function<bool()> after_seconds(double seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  return [=] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
+           seconds;
+  };
 }
 
 }  // namespace fluidbed::testing

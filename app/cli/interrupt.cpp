@@ -2,6 +2,10 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
+#include <filesystem>
+
+#include "core/errors.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -35,6 +39,18 @@ int InterruptGuard::received() { return g_signal.load(std::memory_order_relaxed)
 
 const char* InterruptGuard::name(int signal) {
   return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal";
+}
+
+void say_interrupted(const std::string& resume_command) {
+  std::fprintf(stderr, "interrupted (%s); resume with: %s\n",
+               InterruptGuard::name(InterruptGuard::received()), resume_command.c_str());
+}
+
+void check_resume_out(const std::string& out, const std::string& resume, const std::string& head,
+                      const std::string& what) {
+  namespace fs = std::filesystem;
+  if (!out.empty() && fs::absolute(out).lexically_normal() != fs::absolute(resume).lexically_normal())
+    throw InputError(head + "--out " + out + " is not the " + what + "'s folder");
 }
 
 }  // namespace fluidbed::app

@@ -1,6 +1,8 @@
 #pragma once
 // SIGINT and SIGTERM as a request to stop at the end of the current step (`fluidbed run`): the
 // handler only sets a flag, which the run loop asks after every step (RunOptions::stop).
+#include <string>
+
 namespace fluidbed::app {
 
 // Installs the handlers for the life of the object and puts back the previous ones after.
@@ -14,5 +16,14 @@ class InterruptGuard {
   static int received();
   static const char* name(int signal);
 };
+
+// What an interrupted command prints (stderr, one line): "interrupted (SIGTERM); resume with:
+// RESUME_COMMAND".
+void say_interrupted(const std::string& resume_command);
+
+// `--out OUT` beside `--resume DIR`: InputError ("HEAD--out OUT is not the WHAT's folder") unless
+// OUT is empty or names DIR.
+void check_resume_out(const std::string& out, const std::string& resume, const std::string& head,
+                      const std::string& what);
 
 }  // namespace fluidbed::app

@@ -288,9 +288,7 @@ ReproduceArgs resumed_reproduce_args(const ReproduceArgs& given) {
   if (given.options_given)
     throw InputError(head + "a resumed report takes --quick, --seeds and --set from "
                             "DIR/reproduce.json (give only --resume DIR and, if wanted, --threads)");
-  if (!given.out.empty() &&
-      fs::absolute(given.out).lexically_normal() != fs::absolute(given.resume).lexically_normal())
-    throw InputError(head + "--out " + given.out + " is not the report's folder");
+  check_resume_out(given.out, given.resume, head, "report");
   if (!fs::is_directory(given.resume)) throw InputError(head + "not a folder");
   std::ifstream in(fs::path(given.resume) / "reproduce.json");
   if (!in) throw InputError(head + "no report to resume there (no reproduce.json)");
@@ -343,10 +341,9 @@ int reproduce_report(const ReproduceArgs& a) {
                           [&](std::ostream& o) { o << reproduce_json(a).dump(2) << "\n"; });
   }
   fs::remove(fs::path(out) / "report.md");  // only a finished report is there
-  // An interrupt stops the runs and the sweeps at the end of a step (the sweeps with their
-  // checkpoints); the studies after them keep the default handlers (an interrupt ends the
-  // program, and --resume runs the study it was in again).
-  std::optional<InterruptGuard> interrupts(std::in_place);
+  // An interrupt stops the runs, the sweeps and the studies at the end of a step (the sweeps
+  // with their checkpoints, the studies with their finished points kept).
+  const InterruptGuard interrupts;
   const std::string scenes = asset_dir() + "/scenes/";
   auto log = [](const std::string& line) {
     std::printf("%s\n", line.c_str());
@@ -440,7 +437,6 @@ int reproduce_report(const ReproduceArgs& a) {
 
   // 4. The studies (speed against accuracy, stability, model choices): tiny with --quick. They
   // use their own scenes; the --set overrides above do not apply to them.
-  interrupts.reset();  // the flag outlives the handlers: a signal just before is still seen
   if (InterruptGuard::received() != 0) throw Interrupted{};
   std::vector<study::Report> studies;
   for (const study::Info& info : study::all_studies()) {
@@ -455,7 +451,15 @@ int reproduce_report(const ReproduceArgs& a) {
         continue;
       }
     log("== study " + std::string(info.name));
-    studies.push_back(study::run_study(info, so_study));
+    // Resumed: a study stopped midway keeps the points it finished.
+    so_study.resume = resuming && fs::exists(fs::path(so_study.out) / "study.json");
+    so_study.stop = [] { return InterruptGuard::received() != 0; };
+    so_study.command = "fluidbed reproduce --out " + out;
+    try {
+      studies.push_back(study::run_study(info, so_study));
+    } catch (const study::Interrupted&) {
+      throw Interrupted{};
+    }
   }
 
   // 5. The report.
@@ -587,8 +591,7 @@ int reproduce_command(const ReproduceArgs& given) {
   } catch (const Interrupted&) {
     const std::string out = given.resume.empty() ? (given.out.empty() ? "out/reproduce" : given.out)
                                                  : given.resume;
-    std::fprintf(stderr, "interrupted (%s); resume with: fluidbed reproduce --resume %s\n",
-                 InterruptGuard::name(InterruptGuard::received()), out.c_str());
+    say_interrupted("fluidbed reproduce --resume " + out);
     return 130;
   }
 }

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "cli/interrupt.hpp"
 #include "core/errors.hpp"
 #include "core/threads.hpp"
 #include "studies/study.hpp"
@@ -30,14 +31,32 @@ int study_command(const StudyArgs& a) {
   Options o;
   o.size = a.quick || a.size == "tiny" ? Size::Tiny : Size::Full;
   o.out = a.out.empty() ? "out/study-" + a.name : a.out;
+  if (!a.resume.empty()) {
+    check_resume_out(a.out, a.resume, "cannot resume " + a.resume + ": ", "study");
+    o.out = a.resume;
+    o.resume = true;
+  }
   o.workers = a.jobs;
+  o.command = "fluidbed study " + a.name + (o.size == Size::Tiny ? " --size tiny" : "") +
+              " --out " + o.out;
+  o.stop = [] { return InterruptGuard::received() != 0; };
   o.log = [](const std::string& line) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   };
-  std::printf("study %s (%s size, %d worker threads): %s\n", info->name,
-              o.size == Size::Tiny ? "tiny" : "full", resolve_threads(o.workers), info->title);
-  const Report r = run_study(*info, o);
+  check_study_resume(*info, o);  // before the first line: a refused resume is one line
+  std::printf("study %s (%s size, %d worker threads%s): %s\n", info->name,
+              o.size == Size::Tiny ? "tiny" : "full", resolve_threads(o.workers),
+              o.resume ? ", resumed" : "", info->title);
+  Report r;
+  try {
+    const InterruptGuard interrupts;
+    r = run_study(*info, o);
+  } catch (const Interrupted&) {
+    say_interrupted("fluidbed study " + std::string(info->name) +
+                    (o.size == Size::Tiny ? " --size tiny" : "") + " --resume " + o.out);
+    return 130;
+  }
   std::printf("%d points, %d failed runs (recorded); %.0f s\n", r.points, r.failed, r.wall_time);
   std::printf("wrote %s/study.csv, %s/summary.md", o.out.c_str(), o.out.c_str());
   for (const auto& c : r.charts) std::printf(", %s", c.c_str());

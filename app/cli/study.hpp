@@ -1,5 +1,6 @@
 #pragma once
-// fluidbed study NAME [--out DIR] [--size tiny|full] [--jobs N] | fluidbed study --list
+// fluidbed study NAME [--out DIR] [--size tiny|full] [--jobs N] [--resume DIR]
+// | fluidbed study --list
 #include <string>
 
 namespace fluidbed::app {
@@ -11,6 +12,7 @@ struct StudyArgs {
   bool quick = false;         // the same as --size tiny
   bool list = false;
   int jobs = 0;               // points at once; 0: one per core
+  std::string resume;         // finish the study in this folder (its study.json)
 };
 
 int study_command(const StudyArgs& a);

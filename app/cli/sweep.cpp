@@ -54,10 +54,7 @@ SweepArgs resumed_sweep_args(const SweepArgs& given) {
   if (given.options_given)
     throw InputError(head + "a resumed sweep takes its scene and options from DIR/sweep.json "
                             "(give only --resume DIR and, if wanted, --threads)");
-  namespace fs = std::filesystem;
-  if (!given.out.empty() &&
-      fs::absolute(given.out).lexically_normal() != fs::absolute(given.resume).lexically_normal())
-    throw InputError(head + "--out " + given.out + " is not the sweep's folder");
+  check_resume_out(given.out, given.resume, head, "sweep");
   const nlohmann::json j = read_sweep_identity(given.resume);
   SweepArgs a = given;
   a.out = given.resume;
@@ -74,11 +71,6 @@ SweepArgs resumed_sweep_args(const SweepArgs& given) {
     throw InputError(head + "its sweep.json does not say how the sweep was started");
   }
   return a;
-}
-
-void say_interrupted(const std::string& out) {
-  std::fprintf(stderr, "interrupted (%s); resume with: fluidbed sweep --resume %s\n",
-               InterruptGuard::name(InterruptGuard::received()), out.c_str());
 }
 
 SweepOptions sweep_options(const SweepArgs& a) {
@@ -138,7 +130,7 @@ static int sweep_ensemble(const SweepArgs& a) {
     fs::create_directories(o.out_dir);
     results.push_back(run_sweep(with_seed(s, seed), o));
     if (results.back().interrupted) {
-      say_interrupted(base.out_dir);
+      say_interrupted("fluidbed sweep --resume " + base.out_dir);
       return 130;
     }
     write_sweep_outputs(results.back(), o, s.scene.name);
@@ -266,7 +258,7 @@ int sweep_command(const SweepArgs& given) {
   const InterruptGuard interrupts;
   const SweepResult r = run_sweep(s, o);
   if (r.interrupted) {
-    say_interrupted(o.out_dir);
+    say_interrupted("fluidbed sweep --resume " + o.out_dir);
     return 130;
   }
   write_sweep_outputs(r, o, s.scene.name);

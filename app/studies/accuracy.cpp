@@ -19,6 +19,7 @@
 #include "analysis/mechanical_energy.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
+#include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
 #include "studies/study.hpp"
 
@@ -153,6 +154,31 @@ struct StepResult {
   }
 };
 
+// What a stored step point keeps (stored_point).
+template <class R, class F>
+void step_fields(R& r, F&& f) {
+  f("mult", r.mult);
+  f("dt", r.dt);
+  f("drop_ok", r.drop_ok);
+  f("rest_ok", r.rest_ok);
+  f("pack_ok", r.pack_ok);
+  f("drop_error", r.drop_error);
+  f("rest_error", r.rest_error);
+  f("pack_error", r.pack_error);
+  f("pack_kind", r.pack_kind);
+  f("drop_ratio", r.drop_ratio);
+  f("drop_err", r.drop_err);
+  f("e_mean", r.e_mean);
+  f("e_err", r.e_err);
+  f("e_spread", r.e_spread);
+  f("growth", r.growth);
+  f("drift", r.drift);
+  f("cost", r.cost);
+  f("cost_wall", r.cost_wall);
+  f("psteps", r.psteps);
+}
+const auto kStepFields = [](auto& r, auto&& f) { step_fields(r, f); };
+
 // The settled packing every packing test starts from: frictionless spheres on the random lattice,
 // damped (eta = 0.5 kg/s) with the paper's scheme at half the paper's step until at rest.
 struct RestState {
@@ -162,7 +188,8 @@ struct RestState {
   double solid_fraction = 0.0, bed_height = 0.0;
 };
 
-RestState make_rest_state(const Config& c, const std::string& dir) {
+RestState make_rest_state(const Options& o, const Config& c) {
+  const std::string& dir = o.out;
   Settings s;
   s.scene.name = "rest-packing";
   s.scene.kind = SceneKind::Bed;
@@ -178,7 +205,7 @@ RestState make_rest_state(const Config& c, const std::string& dir) {
   Simulation sim(s);
   RunOptions opt;
   opt.until = c.settle_time;
-  const RunResult r = run_simulation(sim, opt);
+  const RunResult r = run_to_end(o, sim, opt);
   RestState rs;
   rs.path = fs::absolute(fs::path(dir) / "rest.state").string();
   sim.save_state(rs.path);
@@ -191,7 +218,8 @@ RestState make_rest_state(const Config& c, const std::string& dir) {
   return rs;
 }
 
-void packing_test(const Config& c, const RestState& rest, const Variant& v, StepResult& out) {
+void packing_test(const Options& o, const Config& c, const RestState& rest, const Variant& v,
+                  StepResult& out) {
   Settings s = rest.settings;
   s.particles.placement = Placement::State;
   s.particles.state_file = rest.path;
@@ -233,7 +261,7 @@ void packing_test(const Config& c, const RestState& rest, const Variant& v, Step
     opt.until = c.energy_time;
     start = thread_cpu_seconds();
     wall_start = std::chrono::steady_clock::now();
-    p.result = run_simulation(sim, opt);
+    p.result = run_to_end(o, sim, opt);
     p.ok = true;
   } catch (const SimulationFailure& e) {
     p.error = e.what();
@@ -255,7 +283,8 @@ void packing_test(const Config& c, const RestState& rest, const Variant& v, Step
   }
 }
 
-StepResult measure_step(const Config& c, const RestState& rest, const Variant& v, double mult) {
+StepResult measure_step(const Options& o, const Config& c, const RestState& rest,
+                        const Variant& v, double mult) {
   StepResult r;
   const double m = paper_particle_mass();
   const double tc = contact_duration(50000.0, m);
@@ -297,8 +326,24 @@ StepResult measure_step(const Config& c, const RestState& rest, const Variant& v
     const auto [lo, hi] = std::minmax_element(es.begin(), es.end());
     r.e_spread = *hi - *lo;
   }
-  packing_test(c, rest, v, r);
+  packing_test(o, c, rest, v, r);
   return r;
+}
+
+// measure_step as a stored point: the study's folder holds one study at one size (study.json),
+// so the variant, the multiplier and the packing it starts from define it.
+StepResult stored_step(const Options& o, const Config& c, const RestState& rest,
+                       const Variant& v, double mult) {
+  const nlohmann::json what = {{"point", "accuracy_step"},
+                               {"variant", v.label()},
+                               {"mult", mult},
+                               {"rest", to_toml(rest.settings)},
+                               {"rest_state", file_digest(rest.path)}};
+  return fields_from_json<StepResult>(stored_point(o, what, true, [&] {
+                                        return fields_json(measure_step(o, c, rest, v, mult),
+                                                           kStepFields);
+                                      }),
+                                      kStepFields);
 }
 
 // Largest step below which every step of the variant is stable (NaN when the smallest is not).
@@ -361,7 +406,7 @@ Accuracy measure(const Options& o, const Config& c) {
   a.tc9 = a.tc / 9.0;
   if (o.log) o.log("settling the packing for the energy test (" + std::to_string(c.rest_count) +
                    " frictionless spheres, " + fmt("%g s", c.settle_time) + ")");
-  a.rest = make_rest_state(c, o.out);
+  a.rest = make_rest_state(o, c);
 
   const std::size_t nv = c.variants.size(), nm = c.multipliers.size();
   // Heaviest points (the smallest steps) first.
@@ -374,7 +419,7 @@ Accuracy measure(const Options& o, const Config& c) {
       nv * nm,
       [&](std::size_t k) {
         const Variant& v = c.variants[k / nm];
-        StepResult r = measure_step(c, a.rest, v, c.multipliers[k % nm]);
+        StepResult r = stored_step(o, c, a.rest, v, c.multipliers[k % nm]);
         if (o.log) {
           o.log("  " + v.label() + fmt(" dt = %.3gx", r.mult) +
                 (r.stable() ? fmt(": drop error %.3g", r.drop_err) +

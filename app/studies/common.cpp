@@ -10,10 +10,12 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/hash.hpp"
 #include "core/roots.hpp"
 #include "core/threads.hpp"
 #include "scene/scene_loader.hpp"
@@ -58,11 +60,52 @@ const Info* find_study(const std::string& name) {
   return nullptr;
 }
 
+namespace {
+
+const char* size_name(Size s) { return s == Size::Tiny ? "tiny" : "full"; }
+
+fs::path points_dir(const Options& o) { return fs::path(o.out) / "points"; }
+
+}  // namespace
+
+void check_study_resume(const Info& info, const Options& o) {
+  if (!o.resume) return;
+  const std::string head = "cannot resume " + o.out + ": ";
+  if (!fs::is_directory(o.out)) throw InputError(head + "not a folder");
+  std::ifstream in(fs::path(o.out) / "study.json");
+  if (!in) throw InputError(head + "no study to resume there (no study.json)");
+  std::string name, size;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    name = j.at("study").get<std::string>();
+    size = j.at("size").get<std::string>();
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(head + "its study.json does not say which study it holds");
+  }
+  if (name != info.name)
+    throw InputError(head + "it holds study " + name + ", not " + info.name);
+  if (size != size_name(o.size))
+    throw InputError(head + "it holds study " + name + " at --size " + size + ", not --size " +
+                     size_name(o.size));
+}
+
 Report run_study(const Info& info, const Options& o) {
   if (o.out.empty()) throw InputError("study: an output folder is needed (--out)");
+  check_study_resume(info, o);  // a refused resume touches nothing
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec) throw InputError("cannot create output folder " + o.out + ": " + ec.message());
+  if (!o.resume) {  // afresh: an earlier run's points are not this run's
+    fs::remove_all(points_dir(o), ec);
+    const nlohmann::json j = {{"format", 1},
+                              {"study", info.name},
+                              {"size", size_name(o.size)},
+                              {"command", o.command}};
+    write_text((fs::path(o.out) / "study.json").string(), j.dump(2) + "\n");
+  }
+  for (const char* f : {"study.csv", "summary.md", "report.json"})  // a finished study's
+    fs::remove(fs::path(o.out) / f, ec);
+  fs::create_directories(points_dir(o), ec);  // before the points' threads write into it
   const auto start = std::chrono::steady_clock::now();
   Options safe = o;  // the log, for the points' threads
   std::mutex log_mutex;
@@ -89,7 +132,7 @@ Report run_study(const Info& info, const Options& o) {
   const nlohmann::json j = {{"name", r.name},     {"title", r.title},     {"charts", r.charts},
                             {"findings", r.findings}, {"advice", r.advice}, {"points", r.points},
                             {"failed", r.failed}, {"wall_time_s", r.wall_time},
-                            {"size", o.size == Size::Tiny ? "tiny" : "full"}};
+                            {"size", size_name(o.size)}};
   write_text((fs::path(o.out) / "report.json").string(), j.dump(2) + "\n");
   return r;
 }
@@ -99,7 +142,7 @@ std::optional<Report> finished_study(const std::string& dir, Size size) {
   if (!in) return std::nullopt;
   try {
     const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.at("size").get<std::string>() != (size == Size::Tiny ? "tiny" : "full"))
+    if (j.at("size").get<std::string>() != size_name(size))
       return std::nullopt;
     Report r;
     r.name = j.at("name").get<std::string>();
@@ -127,14 +170,85 @@ double thread_cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-PointRun run_point(const Settings& s, double until, RunOptions options) {
+namespace {
+std::string hex_digest(const std::string& bytes) {
+  Fnv1a h;
+  h.bytes(bytes.data(), bytes.size());
+  char b[20];
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h.digest()));
+  return b;
+}
+}  // namespace
+
+std::string file_digest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  return hex_digest(
+      std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+}
+
+void stop_if_asked(const Options& o) {
+  if (o.stop && o.stop()) throw Interrupted();
+}
+
+RunResult run_to_end(const Options& o, Simulation& sim, RunOptions options) {
+  if (o.stop) {
+    auto own = std::move(options.stop);
+    options.stop = [&o, own] { return o.stop() || (own && own()); };
+  }
+  RunResult r = run_simulation(sim, options);
+  if (!r.completed) throw Interrupted();
+  return r;
+}
+
+nlohmann::json stored_point(const Options& o, const nlohmann::json& what, bool reuse,
+                            const std::function<nlohmann::json()>& compute) {
+  const std::string defined = what.dump();
+  const fs::path file = points_dir(o) / (hex_digest(defined) + ".json");
+  if (std::ifstream in(file); reuse && !o.out.empty() && in) {
+    try {
+      const nlohmann::json j = nlohmann::json::parse(in);
+      if (j.at("what").dump() == defined) return j.at("result");
+    } catch (const nlohmann::json::exception&) {
+    }  // unreadable, or another point's: measure it again
+  }
+  stop_if_asked(o);
+  const std::string text = nlohmann::json{{"what", what}, {"result", compute()}}.dump();
+  if (!o.out.empty()) {
+    std::error_code ec;  // write_text says when the folder is not there
+    fs::create_directories(file.parent_path(), ec);
+    write_text(file.string(), text + "\n");
+  }
+  return nlohmann::json::parse(text).at("result");
+}
+
+namespace {
+
+// Every field of a timeseries row, in a fixed order (a stored point's rows).
+template <class Row, class F>
+void row_fields(Row& r, F&& f) {
+  for (auto* v : {&r.t, &r.dp, &r.max_overlap_ratio, &r.max_wall_overlap_ratio,
+                  &r.kinetic_energy, &r.mass_residual, &r.max_cfl, &r.fluid_force_y,
+                  &r.energy.kinetic_translation, &r.energy.kinetic_rotation, &r.energy.potential,
+                  &r.energy.spring_normal, &r.energy.spring_tangential, &r.energy.gas_work,
+                  &r.energy.dashpot, &r.energy.friction, &r.energy.residual})
+    f(*v);
+  for (auto* v : {&r.pair_contacts, &r.wall_contacts, &r.simple_iterations, &r.bubbles}) f(*v);
+}
+
+// A number of a stored array; NaN where JSON has none (it writes NaN as null).
+double number_at(const nlohmann::json& a, std::size_t k) {
+  return a.at(k).is_number() ? a[k].get<double>() : NAN;
+}
+
+PointRun measure_point(const Options& o, const Settings& s, double until, RunOptions options) {
   PointRun p;
   const auto start = std::chrono::steady_clock::now();
   try {
     Simulation sim(s);
     options.until = until;
     const double cpu0 = thread_cpu_seconds();
-    p.result = run_simulation(sim, options);
+    p.result = run_to_end(o, sim, options);
     p.cpu = thread_cpu_seconds() - cpu0;
     p.ok = true;
   } catch (const SimulationFailure& e) {
@@ -143,6 +257,68 @@ PointRun run_point(const Settings& s, double until, RunOptions options) {
   }
   p.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return p;
+}
+
+}  // namespace
+
+nlohmann::json run_definition(const char* kind, const Settings& s, double until) {
+  // A start state counts by its bytes, not where it is (a study's folder may move).
+  Settings named = s;
+  std::string start;
+  if (s.particles.placement == Placement::State) {
+    start = file_digest(s.particles.state_file);
+    named.particles.state_file.clear();
+  }
+  return {{"point", kind},
+          {"scene", to_toml(named)},
+          {"threads", s.threads},
+          {"start_state", start},
+          {"until", until}};
+}
+
+nlohmann::json point_run_json(const PointRun& p) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const TimeseriesRow& r : p.result.rows) {
+    nlohmann::json a = nlohmann::json::array();
+    row_fields(r, [&](const auto& v) { a.push_back(v); });
+    a.push_back(static_cast<int>(r.regime));
+    rows.push_back(std::move(a));
+  }
+  return {{"ok", p.ok},     {"error", p.error}, {"kind", p.kind},
+          {"wall_s", p.wall}, {"cpu_s", p.cpu},   {"summary", p.result.summary},
+          {"rows", rows}};
+}
+
+PointRun point_run_from_json(const nlohmann::json& j) {
+  PointRun p;
+  p.ok = j.at("ok").get<bool>();
+  p.error = j.at("error").get<std::string>();
+  p.kind = j.at("kind").get<std::string>();
+  p.wall = json_number(j, "wall_s");
+  p.cpu = json_number(j, "cpu_s");
+  p.result.summary = j.at("summary");
+  for (const nlohmann::json& a : j.at("rows")) {
+    TimeseriesRow r;
+    std::size_t k = 0;
+    row_fields(r, [&](auto& v) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>)
+        v = number_at(a, k++);
+      else
+        v = a.at(k++).template get<int>();
+    });
+    r.regime = static_cast<Regime>(a.at(k).get<int>());
+    p.result.rows.push_back(r);
+  }
+  return p;
+}
+
+PointRun run_point(const Options& o, const Settings& s, double until, RunOptions options) {
+  nlohmann::json what = run_definition("run", s, until);
+  what["cfl_limit"] = options.cfl_limit;
+  what["porosity_min"] = options.porosity_min;
+  what["bubbles"] = options.bubbles;
+  return point_run_from_json(
+      stored_point(o, what, true, [&] { return point_run_json(measure_point(o, s, until, options)); }));
 }
 
 std::string failure_kind(const std::string& m) {
@@ -157,13 +333,14 @@ std::string failure_kind(const std::string& m) {
   return "other";
 }
 
-double fixed_bed_force_ratio(const Settings& fixed, double U, double time, double& dp) {
+double fixed_bed_force_ratio(const Options& o, const Settings& fixed, double U, double time,
+                             double& dp) {
   Settings s = fixed;
   s.inlet.superficial_velocity = U;
   Simulation sim(s);
   RunOptions opt;
   opt.until = time;
-  run_simulation(sim, opt);
+  run_to_end(o, sim, opt);
   const Particles& p = sim.dem().particles();
   double f = 0.0, m = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -174,16 +351,25 @@ double fixed_bed_force_ratio(const Settings& fixed, double U, double time, doubl
   return f / (m * s.physics.gravity);
 }
 
-double fixed_bed_umf(const Settings& fixed, double lo, double hi, double time, double& dp_lo) {
-  bool first = true;  // false_position evaluates lo first: its dp is the caller's
-  auto excess = [&](double U) {
-    double dp = 0.0;
-    const double f = fixed_bed_force_ratio(fixed, U, time, dp) - 1.0;
-    if (first) dp_lo = dp;
-    first = false;
-    return f;
-  };
-  return false_position(excess, lo, hi, 8, 0.002).secant_root();
+double fixed_bed_umf(const Options& o, const Settings& fixed, double lo, double hi, double time,
+                     double& dp_lo) {
+  nlohmann::json what = run_definition("fixed_bed_umf", fixed, time);
+  what["bracket"] = {lo, hi};
+  const nlohmann::json r = stored_point(o, what, true, [&] {
+    bool first = true;  // false_position evaluates lo first: its dp is the caller's
+    double dp_first = NAN;
+    auto excess = [&](double U) {
+      double dp = 0.0;
+      const double f = fixed_bed_force_ratio(o, fixed, U, time, dp) - 1.0;
+      if (first) dp_first = dp;
+      first = false;
+      return f;
+    };
+    const double umf = false_position(excess, lo, hi, 8, 0.002).secant_root();
+    return nlohmann::json{{"umf", umf}, {"dp_lo", dp_first}};
+  });
+  dp_lo = json_number(r, "dp_lo");
+  return json_number(r, "umf");
 }
 
 Settings bed_scene(Size size, const std::vector<std::string>& overrides) {

@@ -116,7 +116,7 @@ Coupling measure(const Options& o) {
     CouplingResult r;
     r.set = sets[i];
     const Settings s = with_coupling(base, sets[i]);
-    r.bed = run_point(s, until);
+    r.bed = run_point(o, s, until);
     if (r.bed.ok) {
       const auto& j = r.bed.result.summary;
       r.dp = j.value("dp_mean_pa", NAN);
@@ -132,7 +132,7 @@ Coupling measure(const Options& o) {
       Settings fixed = s;
       fixed.particles.frozen = true;
       fixed.inlet.kind = InletKind::Uniform;
-      r.umf = fixed_bed_umf(fixed, 1.5, 2.3, fixed_time, r.fixed_dp);
+      r.umf = fixed_bed_umf(o, fixed, 1.5, 2.3, fixed_time, r.fixed_dp);
       r.umf_ok = std::isfinite(r.umf);
       if (!r.umf_ok) r.umf_error = "the secant did not converge";
     } catch (const SimulationFailure& e) {

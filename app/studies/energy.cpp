@@ -69,7 +69,7 @@ Box measure(const Options& o) {
     Simulation sim(a);
     RunOptions opt;
     opt.until = m.agitate;
-    run_simulation(sim, opt);
+    run_to_end(o, sim, opt);
     const std::string state = std::filesystem::absolute(std::filesystem::path(o.out) / "agitated.state").string();
     sim.save_state(state);
     base.particles.placement = Placement::State;
@@ -93,7 +93,7 @@ Box measure(const Options& o) {
     s.contact.displacement = p.displacement;
     s.time.dt = p.dt;
     s.diagnostics.output_interval = p.until / 100.0;
-    p.run = run_point(s, p.until);
+    p.run = run_point(o, s, p.until);
     if (p.run.ok) {
       const auto& e = p.run.result.summary["energy"];
       p.residual_per_s = e.value("residual_per_s_w", NAN);

@@ -101,7 +101,7 @@ std::vector<CaseResult> measure(const Options& o) {
   const std::string packed = packed_bed_state(bed_scene(o.size), o.log);
   const std::vector<Case> cases = make_cases(o.size, packed);
   return RunPool(o.workers).map<CaseResult>(cases.size(), [&](std::size_t i) {
-    CaseResult r{cases[i], run_point(cases[i].settings, cases[i].until)};
+    CaseResult r{cases[i], run_point(o, cases[i].settings, cases[i].until)};
     if (o.log)
       o.log("  " + r.c.name + ": " + (r.run.ok ? "NOT detected (the run completed)" : r.run.error));
     return r;

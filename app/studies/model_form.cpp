@@ -87,9 +87,15 @@ std::vector<FormResult> measure(const Options& o) {
     f.options.log = [&](const std::string& line) {
       if (o.log) o.log("  " + std::string(f.model_a ? "model A: " : "printed: ") + line);
     };
+    // Resumed with the study: the sweep's own resume (its finished runs read back, a stopped
+    // run continued from its checkpoint).
+    f.options.resume = o.resume && fs::exists(fs::path(f.options.out_dir) / "sweep.json");
+    f.options.stop = o.stop;
     fs::create_directories(f.options.out_dir);
     if (o.log) o.log("sweep, " + label(f.model_a));
+    stop_if_asked(o);
     f.sweep = run_sweep(s, f.options);
+    if (f.sweep.interrupted) throw Interrupted();
     write_sweep_outputs(f.sweep, f.options, label(f.model_a));
     read_run(f);
     try {
@@ -97,8 +103,8 @@ std::vector<FormResult> measure(const Options& o) {
       fixed.particles.frozen = true;
       fixed.inlet.kind = InletKind::Uniform;
       double dp = 0.0;
-      f.fixed_umf = f.model_a ? fixed_bed_umf(fixed, 1.5, 2.3, 0.03, dp)
-                              : fixed_bed_umf(fixed, 2.3, 4.5, 0.03, dp);
+      f.fixed_umf = f.model_a ? fixed_bed_umf(o, fixed, 1.5, 2.3, 0.03, dp)
+                              : fixed_bed_umf(o, fixed, 2.3, 4.5, 0.03, dp);
     } catch (const SimulationFailure& e) {
       f.fixed_error = e.what();
     }

@@ -35,31 +35,34 @@ struct ModuleResult {
   double phase_us(int k) const { return steps > 0 ? 1e6 * phase[k] / static_cast<double>(steps) : NAN; }
 };
 
-ModuleResult run_module(const ModuleConfig& c, const Settings& bed, double until) {
+// What a stored configuration keeps (stored_point): all but its configuration.
+template <class R, class F>
+void module_fields(R& r, F&& f) {
+  f("ok", r.ok);
+  f("error", r.error);
+  f("kind", r.kind);
+  f("particles", r.particles);
+  f("steps", r.steps);
+  f("wall", r.wall);
+  f("sim_time", r.sim_time);
+  f("cpu", r.cpu);
+  static const char* const phases[] = {"phase_0", "phase_1", "phase_2", "phase_3", "phase_4",
+                                       "phase_5", "phase_6", "phase_7", "phase_8", "phase_9"};
+  static_assert(static_cast<int>(Phase::Count) <= 10);
+  for (int k = 0; k < static_cast<int>(Phase::Count); ++k) f(phases[k], r.phase[k]);
+}
+const auto kModuleFields = [](auto& r, auto&& f) { module_fields(r, f); };
+
+// One configuration's run (s: its settings), measured.
+ModuleResult measure_module(const Options& o, const Settings& s, double until) {
   ModuleResult r;
-  r.cfg = c;
-  Settings s = c.drop ? drop_scene(0.053) : bed;
-  for (const auto& o : c.overrides) {
-    // The few switches this study uses, applied to the settings directly.
-    if (o == "no-gas") s.gas.enabled = false;
-    if (o == "frictionless") {
-      s.contact.friction = 0.0;
-      s.contact.tangential_stiffness_ratio = 0.0;
-      s.contact.tangential_damping_ratio = 0.0;
-    }
-    if (o == "gas-at-rest") {
-      s.inlet.kind = InletKind::None;
-      s.inlet.superficial_velocity = 0.0;
-    }
-    if (o == "frozen") s.particles.frozen = true;
-  }
   try {
     Simulation sim(s);
     sim.dem().phase_times().reset();
     RunOptions opt;
     opt.until = until;
     const double cpu0 = thread_cpu_seconds();
-    const RunResult res = run_simulation(sim, opt);
+    const RunResult res = run_to_end(o, sim, opt);
     r.cpu = thread_cpu_seconds() - cpu0;
     r.steps = res.summary["steps"].get<std::int64_t>();
     r.wall = res.summary["wall_time_s"].get<double>();
@@ -72,6 +75,32 @@ ModuleResult run_module(const ModuleConfig& c, const Settings& bed, double until
     r.error = e.what();
     r.kind = failure_kind(r.error);
   }
+  return r;
+}
+
+// A configuration as a stored point (stored_point).
+ModuleResult run_module(const Options& o, const ModuleConfig& c, const Settings& bed,
+                        double until) {
+  Settings s = c.drop ? drop_scene(0.053) : bed;
+  for (const auto& w : c.overrides) {
+    // The few switches this study uses, applied to the settings directly.
+    if (w == "no-gas") s.gas.enabled = false;
+    if (w == "frictionless") {
+      s.contact.friction = 0.0;
+      s.contact.tangential_stiffness_ratio = 0.0;
+      s.contact.tangential_damping_ratio = 0.0;
+    }
+    if (w == "gas-at-rest") {
+      s.inlet.kind = InletKind::None;
+      s.inlet.superficial_velocity = 0.0;
+    }
+    if (w == "frozen") s.particles.frozen = true;
+  }
+  ModuleResult r = fields_from_json<ModuleResult>(
+      stored_point(o, run_definition("module", s, until), true,
+                   [&] { return fields_json(measure_module(o, s, until), kModuleFields); }),
+      kModuleFields);
+  r.cfg = c;
   return r;
 }
 
@@ -102,7 +131,7 @@ Modules measure(const Options& o) {
   };
   m.particles = bed.particles.count;
   m.res = RunPool(o.workers).map<ModuleResult>(cfgs.size(), [&](std::size_t i) {
-    ModuleResult r = run_module(cfgs[i], bed, m.until);
+    ModuleResult r = run_module(o, cfgs[i], bed, m.until);
     if (o.log)
       o.log("  " + r.cfg.label + ": " +
             (r.ok ? fmt("%.1f us per step", r.us_per_step()) : "failed: " + r.error));

@@ -23,33 +23,36 @@ struct StiffPoint {
   double rest_overlap = NAN;  // max overlap ratio over the packing's last 0.1 s
 };
 
-StiffPoint run_stiffness(double k, Size size, double until, double averaging,
-                         const std::string& dir) {
+StiffPoint run_stiffness(const Options& o, double k, double until, double averaging) {
   StiffPoint p;
   p.k = k;
   p.tc = contact_duration(k, paper_particle_mass());
   p.dt = p.tc / 9.0;
-  Settings bed = bed_scene(size, {"contact.stiffness=" + num(k), "time.dt=" + num(p.dt)});
+  Settings bed = bed_scene(o.size, {"contact.stiffness=" + num(k), "time.dt=" + num(p.dt)});
   bed.diagnostics.averaging_start = averaging;
-  // The packing, as `packed` placement would make it, kept in the study's folder.
+  // The packing, as `packed` placement would make it, kept in the study's folder (its state
+  // written before the point is stored: a packing read back has its state there).
   const Settings pk = packing_settings_for(bed);
-  const std::string state = fs::absolute(fs::path(dir) / ("packed-" + num(k) + ".state")).string();
-  {
+  const std::string state = fs::absolute(fs::path(o.out) / ("packed-" + num(k) + ".state")).string();
+  nlohmann::json what = run_definition("packing", pk, pk.time.end);
+  what["state"] = state;
+  p.packing = point_run_from_json(stored_point(o, what, fs::exists(state), [&] {
+    PointRun run;
     const auto start = std::chrono::steady_clock::now();
     try {
       Simulation sim(pk);
       RunOptions opt;
       opt.until = pk.time.end;
-      p.packing.result = run_simulation(sim, opt);
+      run.result = run_to_end(o, sim, opt);
       sim.save_state(state);
-      p.packing.ok = true;
+      run.ok = true;
     } catch (const SimulationFailure& e) {
-      p.packing.error = std::string("packing: ") + e.what();
-      p.packing.kind = failure_kind(e.what());
+      run.error = std::string("packing: ") + e.what();
+      run.kind = failure_kind(e.what());
     }
-    p.packing.wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
+    run.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return point_run_json(run);
+  }));
   if (!p.packing.ok) {
     p.bed.error = "not run: the packing failed";
     p.bed.kind = p.packing.kind;
@@ -60,7 +63,7 @@ StiffPoint run_stiffness(double k, Size size, double until, double averaging,
     if (row.t > pk.time.end - 0.1) p.rest_overlap = std::max(p.rest_overlap, row.max_overlap_ratio);
   bed.particles.placement = Placement::State;
   bed.particles.state_file = state;
-  p.bed = run_point(bed, until);
+  p.bed = run_point(o, bed, until);
   return p;
 }
 
@@ -79,7 +82,7 @@ Stiffness measure(const Options& o) {
   m.averaging = tiny ? 0.2 : 0.5;
   const std::vector<double> ks = {50000.0, 800.0};
   m.pts = RunPool(o.workers).map<StiffPoint>(ks.size(), [&](std::size_t i) {
-    StiffPoint p = run_stiffness(ks[i], o.size, m.until, m.averaging, o.out);
+    StiffPoint p = run_stiffness(o, ks[i], m.until, m.averaging);
     if (o.log) {
       o.log("  kappa = " + num(p.k) + " N/m: " +
             (p.bed.ok ? fmt("max overlap %.3g %%",

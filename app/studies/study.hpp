@@ -9,7 +9,9 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "chart/chart.hpp"
@@ -29,6 +31,18 @@ struct Options {
   // Progress lines (may be empty); run_study hands the study one that its points' threads may
   // call at the same time.
   std::function<void(const std::string&)> log;
+  // Resume the study in `out` (run_study: InputError of one line when out holds no study, or
+  // another study or size); without it run_study starts afresh and forgets out's points.
+  bool resume = false;
+  // Asked before every point and after every step of one: true stops the study there (the
+  // point being measured throws Interrupted and is kept by no one; finished points stay).
+  std::function<bool()> stop;
+  std::string command;  // how the caller started the study (kept in DIR/study.json)
+};
+
+// A study stopped by Options::stop: it wrote no study.csv, summary.md or report.json.
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("study interrupted") {}
 };
 
 // What a study hands back; also written as DIR/summary.md (and used by `reproduce`).
@@ -54,8 +68,13 @@ const std::vector<Info>& all_studies();
 // nullptr when no study has that name.
 const Info* find_study(const std::string& name);
 // Runs a study (creating its folder, timing it, writing summary.md); throws InputError for bad
-// options.
+// options or a resume that does not fit, Interrupted when Options::stop stopped it. Its points
+// are kept as they finish in DIR/points (stored_point), and DIR/study.json says which study and
+// size they belong to: Options::resume reads the finished points back and measures the rest.
 Report run_study(const Info& info, const Options& o);
+// With o.resume: InputError (one line, naming what differs) unless o.out holds a study that
+// run_study(info, o) would resume. Callers check before they touch the folder.
+void check_study_resume(const Info& info, const Options& o);
 // The report a finished study left in its folder (DIR/report.json, written last by run_study
 // with the size it ran at): `reproduce --resume` keeps it instead of running the study again.
 // Nothing when there is none, it is unreadable, or it is of another size.
@@ -74,6 +93,27 @@ double paper_particle_mass();
 // it equals the wall time; with other programs running, wall time measures the scheduler).
 double thread_cpu_seconds();
 
+// A point's result, kept in the study's folder: DIR/points/KEY.json, KEY the hash (Fnv1a) of
+// `what` (everything that defines the point: its kind, the settings as TOML, the end time, the
+// options that change its numbers). Read back when there (a resumed study); otherwise `compute`
+// runs and its result is written (complete or not at all) before it is returned. Either way the
+// caller gets the JSON as read from the file, so a point measured now and one read back give the
+// same numbers (measured costs included: a point read back keeps its stored cost). compute may
+// throw Interrupted (nothing is kept). With an empty o.out nothing is kept. reuse = false
+// measures it again even when kept (a point whose files beside it are gone).
+nlohmann::json stored_point(const Options& o, const nlohmann::json& what, bool reuse,
+                            const std::function<nlohmann::json()>& compute);
+// The FNV-1a hash of a file's bytes, in hex (a start state's part of what defines a point); empty
+// when it cannot be read.
+std::string file_digest(const std::string& path);
+// What defines a run of `s` to `until` (s) for stored_point: KIND, the settings as TOML, the
+// threads inside a step and the bytes of a start state (not its path).
+nlohmann::json run_definition(const char* kind, const Settings& s, double until);
+// Throws Interrupted when o.stop says so (before a point).
+void stop_if_asked(const Options& o);
+// run_simulation(sim, options) that o.stop ends after any step: then Interrupted.
+RunResult run_to_end(const Options& o, Simulation& sim, RunOptions options);
+
 // A run that may fail: the failure's words and its kind instead of an exception.
 struct PointRun {
   bool ok = false;
@@ -83,8 +123,13 @@ struct PointRun {
   double wall = 0.0;  // s, the whole point
   double cpu = 0.0;   // s, thread CPU time of run_simulation (the cost)
 };
-// Runs `s` to `until` (s) with the given options; SimulationFailure becomes a failed point.
-PointRun run_point(const Settings& s, double until, RunOptions options = {});
+// Runs `s` to `until` (s) with the given options; SimulationFailure becomes a failed point. A
+// stored point (stored_point): of the result it keeps `summary` and `rows` (not the bubble rows,
+// mixing or spectrum; the options' hooks are not called for a point read back). An interrupted
+// point starts again from its start when the study resumes.
+PointRun run_point(const Options& o, const Settings& s, double until, RunOptions options = {});
+nlohmann::json point_run_json(const PointRun& p);
+PointRun point_run_from_json(const nlohmann::json& j);
 
 // What a failure message says, as one word: "nan", "overlap", "left_bed", "cfl", "porosity",
 // "simple", "energy" or "other".
@@ -96,10 +141,12 @@ Settings bed_scene(Size size, const std::vector<std::string>& overrides = {});
 
 // The bed of `fixed` (particles.frozen, a uniform inlet) at inflow U after `time` s of gas: the
 // fluid force on the particles over their weight, and dp (Pa).
-double fixed_bed_force_ratio(const Settings& fixed, double U, double time, double& dp);
+double fixed_bed_force_ratio(const Options& o, const Settings& fixed, double U, double time,
+                             double& dp);
 // The model's minimum fluidization velocity: where that ratio reaches 1, by secant steps from the
-// bracket [lo, hi] (m/s) to 2 mm/s. dp_lo: dp at lo.
-double fixed_bed_umf(const Settings& fixed, double lo, double hi, double time, double& dp_lo);
+// bracket [lo, hi] (m/s) to 2 mm/s. dp_lo: dp at lo. A stored point (stored_point).
+double fixed_bed_umf(const Options& o, const Settings& fixed, double lo, double hi, double time,
+                     double& dp_lo);
 
 // The table behind study.csv: named columns, rows of text, one a point.
 class Table {
@@ -123,6 +170,28 @@ void write_table(const std::string& dir, const Table& t, Report& rep);
 
 // A number of a run's summary.json; NaN when it is missing or not a number.
 double json_number(const nlohmann::json& j, const char* key);
+
+// A point's result as JSON and back (stored_point): fields(r, f) calls f("name", r.member) for
+// each member kept (numbers, bools, strings). A double that is not finite is written as null (as
+// JSON has it) and read back as NaN.
+template <class T, class Fields>
+nlohmann::json fields_json(const T& r, Fields&& fields) {
+  nlohmann::json j = nlohmann::json::object();
+  fields(r, [&](const char* name, const auto& v) { j[name] = v; });
+  return j;
+}
+template <class T, class Fields>
+T fields_from_json(const nlohmann::json& j, Fields&& fields) {
+  T r;
+  fields(r, [&](const char* name, auto& v) {
+    using V = std::decay_t<decltype(v)>;
+    if constexpr (std::is_same_v<V, double>)
+      v = json_number(j, name);
+    else
+      v = j.at(name).template get<V>();
+  });
+  return r;
+}
 
 // The drop scene: one particle released at height Y (m) above the floor's wall, no gas.
 Settings drop_scene(double y);

@@ -49,14 +49,10 @@ std::string small_sweep_args(const std::string& options) {
 }
 
 // `fluidbed sweep ARGS --out DIR` in the background, SIGTERM after `seconds`; the exit status.
-int sweep_and_terminate(const std::string& args, const fs::path& dir, const char* seconds) {
-  const std::string cmd = "sh -c '\"" + std::string(FLUIDBED_BINARY) + "\" sweep " + args +
-                          " --out \"" + dir.string() + "\" > \"" + (dir / "out.txt").string() +
-                          "\" 2> \"" + (dir / "err.txt").string() + "\" & p=$!; sleep " +
-                          seconds + "; kill -TERM $p; wait $p; echo $? > \"" +
-                          (dir / "rc.txt").string() + "\"'";
-  EXPECT_EQ(std::system(cmd.c_str()), 0);
-  return std::stoi(read_file(dir / "rc.txt"));
+int sweep_and_terminate(const std::string& args, const fs::path& dir, double seconds) {
+  return fluidbed_terminated("sweep " + args + " --out \"" + dir.string() + "\"", dir,
+                             after_seconds(seconds))
+      .status;
 }
 
 void expect_same_point(const SweepPoint& a, const SweepPoint& b, const fs::path& da,
@@ -136,7 +132,7 @@ TEST(SweepResume, CommandLineSigtermThenResume) {
   const CommandResult r = run_fluidbed("sweep " + args + " --out " + ref.string(), "sweep-cli-ref");
   ASSERT_EQ(r.status, 0) << r.err;
 
-  EXPECT_EQ(sweep_and_terminate(args, dir, "1.5"), 130);
+  EXPECT_EQ(sweep_and_terminate(args, dir, 1.5), 130);
   const std::string err = read_file(dir / "err.txt");
   EXPECT_NE(err.find("resume with: fluidbed sweep --resume " + dir.string()), std::string::npos)
       << err;
@@ -168,7 +164,7 @@ TEST(SweepResume, EnsembleOfTwoSeedsResumesSeedBySeed) {
   const fs::path ref = temp_dir("sweep-seeds-ref"), dir = temp_dir("sweep-seeds");
   const CommandResult r = run_fluidbed("sweep " + args + " --out " + ref.string(), "sweep-seeds");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(sweep_and_terminate(args, dir, "1"), 130) << read_file(dir / "err.txt");
+  EXPECT_EQ(sweep_and_terminate(args, dir, 1.0), 130) << read_file(dir / "err.txt");
   EXPECT_FALSE(fs::exists(dir / "summary.json"));
   const CommandResult resumed = run_fluidbed("sweep --resume " + dir.string(), "sweep-seeds-resume");
   ASSERT_EQ(resumed.status, 0) << resumed.err;
