@@ -96,10 +96,8 @@ ModuleResult run_module(const Options& o, const ModuleConfig& c, const Settings&
     }
     if (w == "frozen") s.particles.frozen = true;
   }
-  ModuleResult r = fields_from_json<ModuleResult>(
-      stored_point(o, run_definition("module", s, until), true,
-                   [&] { return fields_json(measure_module(o, s, until), kModuleFields); }),
-      kModuleFields);
+  ModuleResult r = stored_fields<ModuleResult>(o, run_definition("module", s, until), kModuleFields,
+                                               [&] { return measure_module(o, s, until); });
   r.cfg = c;
   return r;
 }

@@ -193,6 +193,14 @@ T fields_from_json(const nlohmann::json& j, Fields&& fields) {
   return r;
 }
 
+// A point kept in the study's store as its fields: COMPUTE's result (a T) stored under WHAT, or
+// the stored one read back (stored_point, common.cpp).
+template <class T, class Fields, class Compute>
+T stored_fields(const Options& o, const nlohmann::json& what, Fields&& fields, Compute&& compute) {
+  return fields_from_json<T>(
+      stored_point(o, what, true, [&] { return fields_json(compute(), fields); }), fields);
+}
+
 // The drop scene: one particle released at height Y (m) above the floor's wall, no gas.
 Settings drop_scene(double y);
 
