@@ -48,6 +48,7 @@ class BinarySource {
     throw InputError(origin_ + ": state file is " + what);
   }
   std::istream& stream() { return in_; }
+  const std::string& origin() const { return origin_; }
 
  private:
   std::istream& in_;

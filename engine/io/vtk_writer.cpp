@@ -180,7 +180,11 @@ void write_void_vti(const std::string& path, const Snapshot& s) {
                   });
 }
 
-VtkSeries::VtkSeries(std::string dir) : dir_(std::move(dir)) {
+VtkSeries::VtkSeries(std::string dir, Written before)
+    : dir_(std::move(dir)),
+      times_(std::move(before.times)),
+      gas_(before.gas),
+      void_(before.void_fraction) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec) throw InputError("cannot create the VTK folder " + dir_ + ": " + ec.message());

@@ -22,11 +22,22 @@ void write_void_vti(const std::string& path, const Snapshot& s);
 // void fraction) per snapshot, and particles.pvd, gas.pvd and void.pvd listing them with their
 // times. The collections are rewritten after
 // every snapshot (each complete or absent), so a run stopped half-way leaves a readable series.
+// What a series has written: its snapshots' times and which collections it has (a resumed
+// run's series continues from it).
+struct VtkSeriesWritten {
+  std::vector<double> times;  // s
+  bool gas = false, void_fraction = false;
+};
+
 class VtkSeries {
  public:
-  explicit VtkSeries(std::string dir);  // creates the folder; InputError if it cannot
+  using Written = VtkSeriesWritten;
+  // Creates the folder (InputError if it cannot); a series that continues `before` numbers its
+  // next snapshot after those and lists them all in its collections.
+  explicit VtkSeries(std::string dir, Written before = {});
   void write(const Snapshot& s);
   std::size_t size() const { return times_.size(); }
+  Written written() const { return {times_, gas_, void_}; }
 
  private:
   void write_collection(const std::string& name, const std::string& ext) const;

@@ -9,6 +9,7 @@
 
 #include "analysis/bubbles.hpp"
 #include "analysis/mixing.hpp"
+#include "core/binary_io.hpp"
 #include "sim/simulation.hpp"
 #include "sim/snapshot.hpp"
 
@@ -49,6 +50,12 @@ class BubbleRecorder {
   // summary.json's `bubbles` and `mixing` objects (statistics after averaging_start).
   nlohmann::json bubbles_summary(double averaging_start) const;
   nlohmann::json mixing_summary() const;
+
+  // Its state as bytes and back, for a run's checkpoint (run/checkpoint.hpp): the tracker and
+  // history of the analysis, the rows and mixing samples so far, the last frame's counts. restore
+  // expects a recorder built for the same scene.
+  void save(std::ostream& out) const;
+  void restore(BinarySource& in);
 
  private:
   BubbleAnalysis analysis_;

@@ -68,7 +68,8 @@ RunHeader read_header(BinarySource& src) {
 
 void write_checkpoint(const std::string& run_dir, const Simulation& sim,
                       const RunRecorder& recorder, double wall, const std::string& scene_toml,
-                      const nlohmann::json& options, bool bubbles) {
+                      const nlohmann::json& options, bool bubbles,
+                      const std::function<void(const std::string&)>& add_files) {
   const fs::path dir = folder_of(run_dir);
   const fs::path tmp = fs::path(run_dir) / ("checkpoint.partial." + std::to_string(::getpid()));
   std::error_code ec;
@@ -99,6 +100,7 @@ void write_checkpoint(const std::string& run_dir, const Simulation& sim,
   if (sim.has_gas()) where["steps_since_gas_step"] = sim.steps_since_gas_step();
   where["wall_time_s"] = wall;
   write_text(tmp / "where.json", where.dump(2) + "\n");
+  if (add_files) add_files(tmp.string());
   // The new checkpoint takes the name; the old one, renamed aside first, goes after.
   const fs::path old = fs::path(run_dir) / ("checkpoint.old." + std::to_string(::getpid()));
   fs::remove_all(old, ec);

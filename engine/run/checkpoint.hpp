@@ -13,6 +13,8 @@
 //   options.json    how the run was started: scene file, --set lines, end time, threads
 //   where.json      for reading: the simulated time and step reached, the particle steps since
 //                   the last gas step, the wall time so far
+// and what the caller adds (the run's pictures and trajectories: cli/run.cpp).
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -30,10 +32,13 @@ struct Checkpoint {
 };
 
 // Writes RUN_DIR/checkpoint/ of `sim` and `recorder` as they are after a step; `wall`: seconds of
-// wall time so far. Throws InputError when it cannot be written.
+// wall time so far. `add_files`, when given, writes the caller's own files into the folder being
+// written (its path), before it takes the checkpoint's name. Throws InputError when it cannot be
+// written.
 void write_checkpoint(const std::string& run_dir, const Simulation& sim,
                       const RunRecorder& recorder, double wall, const std::string& scene_toml,
-                      const nlohmann::json& options, bool bubbles);
+                      const nlohmann::json& options, bool bubbles,
+                      const std::function<void(const std::string&)>& add_files = {});
 
 // RUN_DIR's checkpoint (its scene and options); an InputError of one line when RUN_DIR is not a
 // folder or holds no checkpoint.

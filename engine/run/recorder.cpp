@@ -229,7 +229,7 @@ PowerSpectrum RunRecorder::dp_spectrum() const {
 }
 
 namespace {
-constexpr char kRecorderTag[8] = {'F', 'L', 'B', 'R', 'E', 'C', '0', '2'};
+constexpr char kRecorderTag[8] = {'F', 'L', 'B', 'R', 'E', 'C', '0', '3'};
 static_assert(std::is_trivially_copyable_v<TimeseriesRow>);
 static_assert(std::is_trivially_copyable_v<EnergyBudget> &&
               std::is_trivially_copyable_v<EnergyLedger>);
@@ -248,13 +248,15 @@ void RunRecorder::save(std::ostream& out) const {
   for (std::int32_t v :
        {static_cast<std::int32_t>(bed_), static_cast<std::int32_t>(has_gas_),
         static_cast<std::int32_t>(last_gas_steps_), static_cast<std::int32_t>(simple_max_),
-        static_cast<std::int32_t>(bounces_.has_value())})
+        static_cast<std::int32_t>(bounces_.has_value()),
+        static_cast<std::int32_t>(bubbles_.has_value())})
     put(out, v);
   put(out, energy_start_);
   put(out, ledger_start_);
   put_vec(out, rows_);
   put(out, pending_);
   if (bounces_) bounces_->save(out);
+  if (bubbles_) bubbles_->save(out);
 }
 
 void RunRecorder::restore(BinarySource& in) {
@@ -279,14 +281,16 @@ void RunRecorder::restore(BinarySource& in) {
   last_gas_steps_ = in.get<std::int32_t>();
   simple_max_ = in.get<std::int32_t>();
   const bool bounces = in.get<std::int32_t>() != 0;
+  const bool bubbles = in.get<std::int32_t>() != 0;
   if (last_step != last_step_ || row_every != row_every_ || bed != bed_ || has_gas != has_gas_ ||
-      bounces != bounces_.has_value())
+      bounces != bounces_.has_value() || bubbles != bubbles_.has_value())
     in.fail("inconsistent (recorded for another scene or end time)");
   energy_start_ = in.get<EnergyBudget>();
   ledger_start_ = in.get<EnergyLedger>();
   in.get_vec(rows_);
   pending_ = in.get<TimeseriesRow>();
   if (bounces_) bounces_->load(in);
+  if (bubbles_) bubbles_->restore(in);
 }
 
 void RunRecorder::add_drop_summary(nlohmann::json& j) const {

@@ -61,8 +61,7 @@ class RunRecorder {
 
   // Its state as bytes and back: a run's checkpoint (run/checkpoint.hpp). restore expects a
   // recorder built for the same run (scene and end step) on the checkpoint's simulation and
-  // refuses one that is not. The bubble analysis is not saved (its tracker's history): a run
-  // with it has no checkpoint.
+  // refuses one that is not; the bubble analysis is saved with it.
   void save(std::ostream& out) const;
   void restore(BinarySource& in);
 

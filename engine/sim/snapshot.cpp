@@ -1,8 +1,56 @@
 #include "sim/snapshot.hpp"
 
+#include <cstring>
+
 #include "sim/simulation.hpp"
 
 namespace fluidbed {
+
+namespace {
+constexpr char kSnapshotTag[8] = {'F', 'L', 'B', 'S', 'N', 'A', 'P', '1'};
+}  // namespace
+
+void save_snapshot(std::ostream& out, const Snapshot& s) {
+  out.write(kSnapshotTag, sizeof kSnapshotTag);
+  for (double v : {s.time, s.dt, s.width, s.height, s.thickness, s.jet_width,
+                   s.superficial_velocity, s.jet_velocity, s.dp, s.max_overlap_ratio,
+                   s.kinetic_energy, s.void_dx, s.void_dy})
+    put(out, v);
+  put(out, s.step);
+  for (int v : {static_cast<int>(s.top_wall), static_cast<int>(s.inlet_kind), s.jets, s.contacts,
+                s.nx, s.ny, s.void_nx, s.void_ny})
+    put(out, static_cast<std::int32_t>(v));
+  for (const std::vector<double>* v :
+       {&s.x, &s.y, &s.radius, &s.vx, &s.vy, &s.spin, &s.fx, &s.fy, &s.torque, &s.overlap,
+        &s.initial_y, &s.gas_ux, &s.gas_uy, &s.porosity, &s.pressure})
+    put_vec(out, *v);
+  put_vec(out, s.void_fraction);
+  put_vec(out, s.bubble_edges);
+}
+
+void load_snapshot(BinarySource& in, Snapshot& s) {
+  char tag[sizeof kSnapshotTag];
+  in.stream().read(tag, sizeof tag);
+  if (!in.stream() || std::memcmp(tag, kSnapshotTag, sizeof tag) != 0) in.fail("not a snapshot's");
+  for (double* v : {&s.time, &s.dt, &s.width, &s.height, &s.thickness, &s.jet_width,
+                    &s.superficial_velocity, &s.jet_velocity, &s.dp, &s.max_overlap_ratio,
+                    &s.kinetic_energy, &s.void_dx, &s.void_dy})
+    *v = in.get<double>();
+  s.step = in.get<std::int64_t>();
+  s.top_wall = in.get<std::int32_t>() != 0;
+  const auto inlet = in.get<std::int32_t>();
+  if (inlet < 0 || inlet > static_cast<std::int32_t>(InletKind::None))
+    in.fail("inconsistent (snapshot inlet)");
+  s.inlet_kind = static_cast<InletKind>(inlet);
+  for (int* v : {&s.jets, &s.contacts, &s.nx, &s.ny, &s.void_nx, &s.void_ny})
+    *v = in.get<std::int32_t>();
+  for (std::vector<double>* v :
+       {&s.x, &s.y, &s.radius, &s.vx, &s.vy, &s.spin, &s.fx, &s.fy, &s.torque, &s.overlap,
+        &s.initial_y, &s.gas_ux, &s.gas_uy, &s.porosity, &s.pressure})
+    in.get_vec(*v);
+  in.get_vec(s.void_fraction);
+  in.get_vec(s.bubble_edges);
+}
 
 void take_snapshot(const Simulation& sim, Snapshot& out) {
   const Settings& s = sim.settings();

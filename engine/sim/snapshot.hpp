@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/binary_io.hpp"
 #include "scene/options.hpp"
 
 namespace fluidbed {
@@ -57,6 +58,10 @@ struct Snapshot {
 
 // Copies the simulation's state into `out` (reusing its buffers).
 void take_snapshot(const Simulation& sim, Snapshot& out);
+
+// A snapshot as bytes and back, every field (a run's checkpoint keeps its montage's snapshots).
+void save_snapshot(std::ostream& out, const Snapshot& s);
+void load_snapshot(BinarySource& in, Snapshot& s);
 
 // The hand-off between the engine thread and its readers: the writer publishes a whole snapshot,
 // a reader takes the newest one. The lock is held only to swap a pointer, never while a snapshot
