@@ -46,7 +46,62 @@ bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
   return ok;
 }
 
+// Starts ffmpeg with `args` (args[0] "ffmpeg"), standard input from `in` (or /dev/null when
+// in < 0), standard output to /dev/null; posix_spawnp's status (0: started).
+int spawn_ffmpeg(std::vector<std::string> args, int in, pid_t* pid) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (in >= 0)
+    posix_spawn_file_actions_adddup2(&actions, in, 0);
+  else
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  const int rc = posix_spawnp(pid, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc;
+}
+
 }  // namespace
+
+void join_videos(const std::vector<std::string>& parts, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (parts.size() == 1) {
+    fs::rename(parts[0], path, ec);
+    if (ec) throw std::runtime_error("video: cannot move " + parts[0] + " into place: " + ec.message());
+    return;
+  }
+  const std::string list = path + ".parts.txt", partial = path + ".part";
+  {
+    std::FILE* f = std::fopen(list.c_str(), "w");
+    if (!f) throw std::runtime_error("video: cannot write " + list);
+    for (const std::string& p : parts)
+      std::fprintf(f, "file '%s'\n", fs::absolute(p).string().c_str());
+    if (std::fclose(f) != 0) throw std::runtime_error("video: cannot write " + list);
+  }
+  pid_t pid = -1;
+  const int rc = spawn_ffmpeg({"ffmpeg", "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
+                               "-f", "concat", "-safe", "0", "-i", list, "-c", "copy", "-movflags",
+                               "+faststart", "-f", "mp4", partial},
+                              -1, &pid);
+  if (rc != 0)
+    throw std::runtime_error(std::string("video: cannot start ffmpeg (") + std::strerror(rc) +
+                             "); install Debian's ffmpeg");
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  fs::remove(list, ec);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    fs::remove(partial, ec);
+    throw std::runtime_error("video: ffmpeg failed joining the parts of " + path);
+  }
+  fs::rename(partial, path, ec);
+  if (ec) throw std::runtime_error("video: cannot move " + partial + " into place: " + ec.message());
+  for (const std::string& p : parts) fs::remove(p, ec);
+}
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
     : path_(path), partial_(path + ".part"), width_(width), height_(height) {
@@ -65,16 +120,8 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
                                    "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p",
                                    "-movflags", "+faststart", "-f", "mp4", partial_};
   // -nostdin only stops ffmpeg reading keys from the terminal; the frames come as input pipe:0.
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[0], 0);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, "ffmpeg", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
+  const int rc = spawn_ffmpeg(args, fds[0], &pid);
   ::close(fds[0]);
   if (rc != 0) {
     ::close(fds[1]);

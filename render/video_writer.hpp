@@ -3,6 +3,7 @@
 // H.264 (libx264), yuv420p so that every player opens it. The file appears under its name only
 // when ffmpeg finished it.
 #include <string>
+#include <vector>
 
 #include "render/image.hpp"
 
@@ -30,5 +31,10 @@ class VideoWriter {
   int pid_ = -1;
   int frames_ = 0;
 };
+
+// Joins MP4 files written by VideoWriter with the same size and rate into one at `path`, without
+// encoding again (ffmpeg's concat demuxer, streams copied), and removes them; one part is renamed.
+// Throws std::runtime_error when ffmpeg fails.
+void join_videos(const std::vector<std::string>& parts, const std::string& path);
 
 }  // namespace fluidbed::render
