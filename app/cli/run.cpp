@@ -17,7 +17,9 @@
 #include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "core/atomic_file.hpp"
+#include "core/binary_io.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/run_pool.hpp"
 #include "core/threads.hpp"
 #include "output/frames.hpp"
@@ -54,6 +56,55 @@ std::vector<int> parse_ids(const std::string& list, std::size_t count) {
   return ids;
 }
 
+// What a run writes beside its summary and timeseries: pictures, plots, bubbles.
+nlohmann::json output_options(const RunArgs& a) {
+  const OutputArgs& o = a.output;
+  return {{"frames", o.frames},
+          {"video", o.video},
+          {"vtk", o.vtk},
+          {"montage", o.montage},
+          {"frame_interval", o.frame_interval},
+          {"frame_size", o.frame_size},
+          {"colour", o.colour},
+          {"colour_range", o.colour_range},
+          {"gas_arrows", o.gas_arrows},
+          {"gas_arrow_colour", o.gas_arrow_colour},
+          {"particle_arrows", o.particle_arrows},
+          {"porosity_background", o.porosity_background},
+          {"dark", o.dark},
+          {"bubble_outlines", o.bubble_outlines},
+          {"close_up", o.close_up},
+          {"video_fps", o.video_fps},
+          {"gl_backend", o.gl_backend},
+          {"plots", a.plots},
+          {"track", a.track},
+          {"bubbles", a.bubbles}};
+}
+
+void set_output_options(const nlohmann::json& j, RunArgs& a) {
+  OutputArgs& o = a.output;
+  o.frames = j.at("frames").get<bool>();
+  o.video = j.at("video").get<bool>();
+  o.vtk = j.at("vtk").get<bool>();
+  o.montage = j.at("montage").get<std::string>();
+  o.frame_interval = j.at("frame_interval").get<double>();
+  o.frame_size = j.at("frame_size").get<std::string>();
+  o.colour = j.at("colour").get<std::string>();
+  o.colour_range = j.at("colour_range").get<std::string>();
+  o.gas_arrows = j.at("gas_arrows").get<bool>();
+  o.gas_arrow_colour = j.at("gas_arrow_colour").get<bool>();
+  o.particle_arrows = j.at("particle_arrows").get<bool>();
+  o.porosity_background = j.at("porosity_background").get<bool>();
+  o.dark = j.at("dark").get<bool>();
+  o.bubble_outlines = j.at("bubble_outlines").get<bool>();
+  o.close_up = j.at("close_up").get<double>();
+  o.video_fps = j.at("video_fps").get<double>();
+  o.gl_backend = j.at("gl_backend").get<std::string>();
+  a.plots = j.at("plots").get<bool>();
+  a.track = j.at("track").get<std::string>();
+  a.bubbles = j.at("bubbles").get<bool>();
+}
+
 // How the run was started, as its checkpoint keeps it (run/checkpoint.hpp, options.json).
 nlohmann::json run_options(const RunArgs& a, double until) {
   nlohmann::json o;
@@ -63,6 +114,7 @@ nlohmann::json run_options(const RunArgs& a, double until) {
   o["until_s"] = until;
   o["threads"] = a.threads;
   o["checkpoint_every_s"] = a.checkpoint_every;
+  o["outputs"] = output_options(a);
   return o;
 }
 
@@ -70,11 +122,6 @@ nlohmann::json run_options(const RunArgs& a, double until) {
 // must say the same (or a changed run would pass for the old one).
 RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
   const std::string head = "cannot resume " + a.resume + ": ";
-  if (a.output.frames || a.output.video || a.output.vtk || !a.output.montage.empty() || a.plots ||
-      a.bubbles)
-    throw InputError(head +
-                     "--frames, --video, --vtk, --montage, --plots and --bubbles runs have no "
-                     "checkpoint, and a resumed run cannot add them");
   if (!a.out.empty() && std::filesystem::absolute(a.out).lexically_normal() !=
                             std::filesystem::absolute(a.resume).lexically_normal())
     throw InputError(head + "--out " + a.out +
@@ -96,6 +143,15 @@ RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
     r.until = until;
     if (!a.threads_given) r.threads = o.at("threads").get<int>();
     if (a.checkpoint_every < 0.0) r.checkpoint_every = o.at("checkpoint_every_s").get<double>();
+    // The pictures, plots and bubbles are the run's: one given again (set away from its default)
+    // must be the same.
+    const nlohmann::json& outputs = o.at("outputs");
+    const nlohmann::json given = output_options(a), defaults = output_options(RunArgs{});
+    for (const auto& [key, value] : given.items())
+      if (value != defaults.at(key) && outputs.at(key) != value)
+          throw InputError(head + "its output option " + key + " was " + outputs.at(key).dump() +
+                           ", not " + value.dump() + " (leave the output options out to resume)");
+    set_output_options(outputs, r);
   } catch (const nlohmann::json::exception&) {
     throw InputError(head + c.folder + "/options.json is not a checkpoint's options");
   }
@@ -272,8 +328,15 @@ int run_command(const RunArgs& given) {
   // Frames, video, montage, VTK: snapshots at exact times, drawn and written by a worker thread.
   std::unique_ptr<FrameOutput> pictures;
   if (const FrameOptions fo = frame_options(a.output, asset_dir()); fo.any()) {
-    pictures = std::make_unique<FrameOutput>(out, fo, sim, until);
-    pictures->observe(sim);  // the starting state, when it is an output time
+    pictures = std::make_unique<FrameOutput>(out, fo, sim, until,
+                                             checkpoint ? checkpoint->folder : std::string());
+    if (!checkpoint) pictures->observe(sim);  // the starting state, when it is an output time
+  }
+  if (tracks && checkpoint) {
+    const std::string p = (std::filesystem::path(checkpoint->folder) / "tracks.bin").string();
+    std::ifstream in = open_input_file(p, "checkpoint trajectories");
+    BinarySource src(in, p);
+    tracks->restore(src);
   }
   RunOptions opt;
   if (pictures || tracks)
@@ -290,13 +353,22 @@ int run_command(const RunArgs& given) {
     std::ofstream scene_out(std::filesystem::path(out) / "scene.toml");
     scene_out << "# the scene as run, every value resolved\n" << scene_toml;
   }
-  // Checkpoints (run/checkpoint.hpp): periodic and at an interrupt. The pictures, the plots'
-  // trajectories and the bubble tracker are not saved, so those runs have none.
-  const bool checkpoints = !pictures && !tracks && !a.bubbles;
-  if (checkpoints) {
+  // Checkpoints (run/checkpoint.hpp): periodic and at an interrupt, with the pictures' and the
+  // trajectories' state beside the run's.
+  {
     const nlohmann::json options = run_options(a, until);
     opt.checkpoint = [&, options](const Simulation& x, const RunRecorder& rec, double wall) {
-      write_checkpoint(out, x, rec, wall, scene_toml, options, a.bubbles);
+      write_checkpoint(out, x, rec, wall, scene_toml, options, a.bubbles,
+                       [&](const std::string& folder) {
+                         if (pictures) pictures->checkpoint(folder);
+                         if (!tracks) return;
+                         const std::string p =
+                             (std::filesystem::path(folder) / "tracks.bin").string();
+                         std::ofstream f(p, std::ios::binary | std::ios::trunc);
+                         tracks->save(f);
+                         f.flush();
+                         if (!f) throw InputError("cannot write " + p);
+                       });
     };
     opt.checkpoint_interval = a.checkpoint_every < 0.0 ? 60.0 : a.checkpoint_every;
     opt.checkpoint_min_run = a.checkpoint_every < 0.0 ? 120.0 : 0.0;
@@ -319,14 +391,8 @@ int run_command(const RunArgs& given) {
     const std::string why =
         std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
     live.interrupted(sim.time(), why);
-    if (checkpoints)
-      std::fprintf(stderr, "interrupted at t = %.6g s; resume with: fluidbed run --resume %s\n",
-                   sim.time(), out.c_str());
-    else
-      std::fprintf(stderr,
-                   "interrupted at t = %.6g s (%s): the timeseries so far is in %s/timeseries.csv, "
-                   "no summary.json\n",
-                   sim.time(), why.c_str(), out.c_str());
+    std::fprintf(stderr, "interrupted at t = %.6g s; resume with: fluidbed run --resume %s\n",
+                 sim.time(), out.c_str());
     return 130;
   }
   const FrameStats picture_stats = pictures ? pictures->finish() : FrameStats{};

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
+#include <fstream>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +11,8 @@
 #include <optional>
 
 #include "core/atomic_file.hpp"
+#include "core/binary_io.hpp"
+#include "core/input_file.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "io/vtk_writer.hpp"
@@ -26,6 +30,8 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+constexpr char kPicturesTag[8] = {'F', 'L', 'B', 'P', 'I', 'C', '0', '1'};
+
 // Decimals of "t = 7.32 s" that tell frames `interval` apart (two at least).
 int time_decimals(double interval) {
   return std::clamp(static_cast<int>(std::ceil(-std::log10(interval) - 1e-9)), 2, 6);
@@ -34,7 +40,7 @@ int time_decimals(double interval) {
 }  // namespace
 
 FrameOutput::FrameOutput(std::string out_dir, FrameOptions options, const Simulation& sim,
-                         double until)
+                         double until, const std::string& resume_from)
     : dir_(std::move(out_dir)), opt_(std::move(options)), dt_(sim.settings().time.dt) {
   if (!(opt_.interval > 0.0)) throw InputError("--frame-interval must be positive");
   if (opt_.width <= 0 || opt_.height <= 0) throw InputError("--frame-size must be positive");
@@ -46,10 +52,48 @@ FrameOutput::FrameOutput(std::string out_dir, FrameOptions options, const Simula
     bubbles_ = std::make_unique<BubbleAnalysis>(bubble_settings_for(sim.settings()),
                                                 bubble_geometry_for(sim.settings()));
   opt_.look.time_decimals = time_decimals(opt_.interval);
+  const bool resumed = !resume_from.empty();
+  if (resumed) {
+    const std::string p = (std::filesystem::path(resume_from) / "pictures.bin").string();
+    std::ifstream in = open_input_file(p, "checkpoint pictures");
+    BinarySource src(in, p);
+    char tag[sizeof kPicturesTag];
+    in.read(tag, sizeof tag);
+    if (!in || std::memcmp(tag, kPicturesTag, sizeof tag) != 0) src.fail("not a run's pictures");
+    saved_.stats.frames = src.get<std::int32_t>();
+    saved_.stats.vtk_files = src.get<std::int32_t>();
+    for (double* v : {&saved_.stats.render_s, &saved_.stats.png_s, &saved_.stats.video_s,
+                      &saved_.stats.vtk_s, &saved_.stats.snapshot_s, &saved_.stats.wait_s})
+      *v = src.get<double>();
+    const auto panels = src.get<std::uint64_t>();
+    if (panels > 10000) src.fail("inconsistent (montage)");
+    for (std::uint64_t k = 0; k < panels; ++k) {
+      auto snap = std::make_shared<Snapshot>();
+      load_snapshot(src, *snap);
+      saved_.montage.push_back(std::move(snap));
+    }
+    src.get_vec(saved_.vtk.times);
+    saved_.vtk.gas = src.get<std::int32_t>() != 0;
+    saved_.vtk.void_fraction = src.get<std::int32_t>() != 0;
+    saved_.video_parts = src.get<std::int32_t>();
+    if (src.get<std::int32_t>() != (bubbles_ ? 1 : 0)) src.fail("inconsistent (bubble outlines)");
+    if (bubbles_) bubbles_->load(in, p);
+    stats_ = saved_.stats;
+    // Parts of the video a stopped process wrote after its last checkpoint are written again.
+    std::error_code ec;
+    for (int k = saved_.video_parts;
+         std::filesystem::exists(video_part(k), ec) ||
+         std::filesystem::exists(video_part(k) + ".part", ec);
+         ++k) {
+      std::filesystem::remove(video_part(k), ec);
+      std::filesystem::remove(video_part(k) + ".part", ec);
+    }
+  }
 
   // Output times are steps: the nearest step to each time (within dt / 2), the same rounding the
-  // run uses for its end, so the same command always gives the same frames.
-  const std::int64_t first = sim.steps();
+  // run uses for its end, so the same command always gives the same frames. A resumed run
+  // observed its checkpoint's step before it stopped.
+  const std::int64_t first = sim.steps() + (resumed ? 1 : 0);
   const std::int64_t last = steps_for(until, dt_);
   if (opt_.frames || opt_.video || opt_.vtk) {
     const double t0 = static_cast<double>(first) * dt_;
@@ -61,6 +105,7 @@ FrameOutput::FrameOutput(std::string out_dir, FrameOptions options, const Simula
   }
   for (double t : opt_.montage) {
     const std::int64_t n = steps_for(t, dt_);
+    if (resumed && n < first) continue;  // in the montage saved
     if (n < first || n > last) {
       char msg[160];
       std::snprintf(msg, sizeof msg, "--montage time %g s is outside the run (%g to %g s)", t,
@@ -145,6 +190,45 @@ FrameStats FrameOutput::finish() {
   return stats_;
 }
 
+std::string FrameOutput::video_part(int k) const {
+  char name[32];
+  std::snprintf(name, sizeof name, "%03d.mp4", k);
+  return (std::filesystem::path(dir_) / "video-parts" / name).string();
+}
+
+void FrameOutput::checkpoint(const std::string& folder) {
+  Job job;
+  job.checkpoint = true;
+  push(std::move(job));
+  Saved s;
+  {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return checkpoint_done_ || error_; });
+    rethrow_if_failed();
+    checkpoint_done_ = false;
+    s = saved_;
+  }
+  const std::string p = (std::filesystem::path(folder) / "pictures.bin").string();
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out.write(kPicturesTag, sizeof kPicturesTag);
+  put(out, static_cast<std::int32_t>(s.stats.frames));
+  put(out, static_cast<std::int32_t>(s.stats.vtk_files));
+  // The engine thread's own costs are its, up to now.
+  for (double v : {s.stats.render_s, s.stats.png_s, s.stats.video_s, s.stats.vtk_s,
+                   stats_.snapshot_s, stats_.wait_s})
+    put(out, v);
+  put(out, static_cast<std::uint64_t>(s.montage.size()));
+  for (const auto& snap : s.montage) save_snapshot(out, *snap);
+  put_vec(out, s.vtk.times);
+  put(out, static_cast<std::int32_t>(s.vtk.gas));
+  put(out, static_cast<std::int32_t>(s.vtk.void_fraction));
+  put(out, static_cast<std::int32_t>(s.video_parts));
+  put(out, static_cast<std::int32_t>(bubbles_ ? 1 : 0));
+  if (bubbles_) bubbles_->save(out);
+  out.flush();
+  if (!out) throw InputError("cannot write " + p);
+}
+
 // The worker: owns the GL context, the renderer, the video encoder and the VTK series.
 void FrameOutput::work() {
   try {
@@ -165,16 +249,22 @@ void FrameOutput::work() {
       fs::create_directories(fs::path(dir_) / "frames", ec);
       if (ec) throw InputError("cannot create " + dir_ + "/frames: " + ec.message());
     }
-    if (opt_.video) video.emplace((fs::path(dir_) / "video.mp4").string(), opt_.width, opt_.height,
-                                  opt_.video_fps);
-    if (opt_.vtk) vtk.emplace((fs::path(dir_) / "vtk").string());
+    // The video is written in parts, one between checkpoints, joined at the end.
+    int video_parts = saved_.video_parts;
+    auto open_video = [&] {
+      fs::create_directories(fs::path(dir_) / "video-parts", ec);
+      if (ec) throw InputError("cannot create " + dir_ + "/video-parts: " + ec.message());
+      video.emplace(video_part(video_parts), opt_.width, opt_.height, opt_.video_fps);
+    };
+    if (opt_.video) open_video();
+    if (opt_.vtk) vtk.emplace((fs::path(dir_) / "vtk").string(), saved_.vtk);
     {
       std::lock_guard lock(mutex_);
       ready_ = true;
     }
     changed_.notify_all();
 
-    std::vector<std::shared_ptr<const Snapshot>> montage;
+    std::vector<std::shared_ptr<const Snapshot>> montage = saved_.montage;
     for (;;) {
       Job job;
       {
@@ -188,6 +278,25 @@ void FrameOutput::work() {
         jobs_.pop_front();
       }
       changed_.notify_all();
+      if (job.checkpoint) {
+        if (video && video->frames() > 0) {
+          const auto t0 = Clock::now();
+          video->close();
+          video.reset();
+          ++video_parts;
+          stats_.video_s += seconds_since(t0);
+        }
+        {
+          std::lock_guard lock(mutex_);
+          saved_.stats = stats_;
+          saved_.montage = montage;
+          saved_.vtk = vtk ? vtk->written() : VtkSeries::Written{};
+          saved_.video_parts = video_parts;
+          checkpoint_done_ = true;
+        }
+        changed_.notify_all();
+        continue;
+      }
       if (job.frame && renderer) {
         auto t0 = Clock::now();
         const render::Image img = renderer->render_frame(*job.snapshot, opt_.look, opt_.width, opt_.height);
@@ -199,8 +308,9 @@ void FrameOutput::work() {
           render::write_png((fs::path(dir_) / "frames" / name).string(), img);
           stats_.png_s += seconds_since(t0);
         }
-        if (video) {
+        if (opt_.video) {
           t0 = Clock::now();
+          if (!video) open_video();
           video->write(img);
           stats_.video_s += seconds_since(t0);
         }
@@ -220,9 +330,17 @@ void FrameOutput::work() {
       render::write_png((fs::path(dir_) / "montage.png").string(),
                         renderer->render_montage(panels, opt_.look, opt_.height));
     }
-    if (video) {
+    if (opt_.video) {
       const auto t0 = Clock::now();
-      video->close();
+      if (video && (video->frames() > 0 || video_parts == 0)) {
+        video->close();
+        ++video_parts;
+      }
+      video.reset();
+      std::vector<std::string> parts;
+      for (int k = 0; k < video_parts; ++k) parts.push_back(video_part(k));
+      render::join_videos(parts, (fs::path(dir_) / "video.mp4").string());
+      fs::remove_all(fs::path(dir_) / "video-parts", ec);
       stats_.video_s += seconds_since(t0);
     }
   } catch (...) {

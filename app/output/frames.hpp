@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "analysis/bubbles.hpp"
+#include "io/vtk_writer.hpp"
 #include "cli/commands.hpp"
 #include "render/render_settings.hpp"
 #include "sim/simulation.hpp"
@@ -53,8 +54,11 @@ class FrameOutput {
   // Plans the output times of a run from the simulation's current step to `until` (s), starts
   // the worker and waits until it is ready (GL context, shaders, font, ffmpeg). Throws InputError
   // for bad options (unknown backend, montage time outside the run, odd video size), and what the
-  // worker could not start with.
-  FrameOutput(std::string out_dir, FrameOptions options, const Simulation& sim, double until);
+  // worker could not start with. A resumed run passes its checkpoint's folder: the output goes on
+  // from what checkpoint() saved there (the outputs after the checkpoint's step only, the frame
+  // count, the montage's snapshots so far, the VTK series, the video's finished parts).
+  FrameOutput(std::string out_dir, FrameOptions options, const Simulation& sim, double until,
+              const std::string& resume_from = "");
   ~FrameOutput();  // stops the worker if finish() was not called (files left incomplete)
   FrameOutput(const FrameOutput&) = delete;
   FrameOutput& operator=(const FrameOutput&) = delete;
@@ -64,12 +68,25 @@ class FrameOutput {
   void observe(const Simulation& sim);
   // Waits for the worker to write everything (the video closed, the montage drawn) and reports.
   FrameStats finish();
+  // For a run's checkpoint (cli/run.cpp), on the engine thread between steps: waits until the
+  // worker has written every snapshot taken so far and closed the video's current part
+  // (DIR/video-parts/NNN.mp4; finish() joins the parts into DIR/video.mp4), then writes what the
+  // output needs to go on into `folder`/pictures.bin.
+  void checkpoint(const std::string& folder);
 
  private:
   struct Job {
     std::shared_ptr<const Snapshot> snapshot;
     bool frame = false, montage = false;
     std::int64_t index = 0;  // frame number: round(t / interval)
+    bool checkpoint = false;  // no snapshot: close the video's part and report (checkpoint())
+  };
+  // The worker's side of a checkpoint, handed over under the mutex.
+  struct Saved {
+    FrameStats stats;
+    std::vector<std::shared_ptr<const Snapshot>> montage;
+    VtkSeries::Written vtk;
+    int video_parts = 0;
   };
   struct Due {
     std::int64_t step;
@@ -79,6 +96,7 @@ class FrameOutput {
   void work();
   void push(Job job);
   void rethrow_if_failed();
+  std::string video_part(int k) const;
 
   std::string dir_;
   FrameOptions opt_;
@@ -93,6 +111,8 @@ class FrameOutput {
   bool closing_ = false, ready_ = false;
   std::exception_ptr error_;
   FrameStats stats_;
+  Saved saved_;                // the worker's state at the last checkpoint, and a resumed run's
+  bool checkpoint_done_ = false;
   std::thread worker_;
   // The fine void fraction and the bubble outlines for the snapshots (VTK, --bubble-outlines).
   std::unique_ptr<BubbleAnalysis> bubbles_;

@@ -152,6 +152,30 @@ void TrajectoryRecorder::observe(const Simulation& sim) {
   }
 }
 
+void TrajectoryRecorder::save(std::ostream& out) const {
+  put(out, every_);
+  put(out, static_cast<std::uint64_t>(tracks_.size()));
+  for (const Trajectory& tr : tracks_) {
+    put(out, static_cast<std::int32_t>(tr.id));
+    put_vec(out, tr.t);
+    put_vec(out, tr.x);
+    put_vec(out, tr.y);
+  }
+}
+
+void TrajectoryRecorder::restore(BinarySource& in) {
+  if (in.get<std::int64_t>() != every_) in.fail("inconsistent (trajectory interval)");
+  const auto n = in.get<std::uint64_t>();
+  if (n > 1000000) in.fail("inconsistent (trajectories)");
+  tracks_.assign(n, Trajectory{});
+  for (Trajectory& tr : tracks_) {
+    tr.id = in.get<std::int32_t>();
+    in.get_vec(tr.t);
+    in.get_vec(tr.x, static_cast<std::int64_t>(tr.t.size()));
+    in.get_vec(tr.y, static_cast<std::int64_t>(tr.t.size()));
+  }
+}
+
 void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene) {
   chart::Chart c;
   c.title = "Bed pressure drop against superficial gas velocity (" + scene + ")";

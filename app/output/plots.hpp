@@ -3,10 +3,12 @@
 // single run dp against time (Fig. 8), the maximum overlap ratio against time (Fig. 15) and the
 // trajectories of tracked particles (Figs 12-13).
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/binary_io.hpp"
 #include "run/run.hpp"
 #include "run/sweep.hpp"
 #include "sim/simulation.hpp"
@@ -31,6 +33,9 @@ class TrajectoryRecorder {
   TrajectoryRecorder(const std::vector<int>& ids, double interval, double dt);
   void observe(const Simulation& sim);
   const std::vector<Trajectory>& tracks() const { return tracks_; }
+  // The tracks so far (ids included) as bytes and back, for a run's checkpoint.
+  void save(std::ostream& out) const;
+  void restore(BinarySource& in);
 
  private:
   std::vector<Trajectory> tracks_;
