@@ -187,9 +187,12 @@ std::vector<double> default_sweep_velocities(const Settings& scene) {
   return v;
 }
 
-SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) {
+namespace {
+
+// The options as a sweep runs them: the scene's velocities when none are given, sorted, each
+// once; InputError for options no sweep can run.
+SweepOptions checked_options(const Settings& scene, const SweepOptions& options) {
   SweepOptions o = options;
-  Settings scene = sweep_scene;
   if (o.velocities.empty()) o.velocities = default_sweep_velocities(scene);
   if (o.out_dir.empty()) throw InputError("sweep: an output folder is needed");
   if (!scene.gas.enabled) throw InputError("sweep: the scene has no [gas] section");
@@ -213,6 +216,14 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
       throw InputError(line);
     }
   o.threads = std::max(1, o.threads);
+  return o;
+}
+
+}  // namespace
+
+SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) {
+  const SweepOptions o = checked_options(sweep_scene, options);
+  Settings scene = sweep_scene;
 
   const auto start = std::chrono::steady_clock::now();
   // Pack once before the runs share the cache.
@@ -361,9 +372,8 @@ nlohmann::json sweep_identity(const Settings& scene, const SweepOptions& options
 }
 
 void check_sweep_resume(const Settings& scene, const SweepOptions& options) {
-  if (!options.resume || !fs::exists(fs::path(options.out_dir) / "sweep.json")) return;
-  SweepOptions o = options;
-  if (o.velocities.empty()) o.velocities = default_sweep_velocities(scene);
+  const SweepOptions o = checked_options(scene, options);
+  if (!o.resume || !fs::exists(fs::path(o.out_dir) / "sweep.json")) return;
   const nlohmann::json identity = sweep_identity(scene, o);
   const nlohmann::json was = read_sweep_identity(o.out_dir);
   const std::string head = "cannot resume " + o.out_dir + ": ";

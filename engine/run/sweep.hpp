@@ -63,9 +63,9 @@ struct SweepResult {
 
 // The sweep.json of a sweep's folder: what run_sweep(scene, options) would write there.
 nlohmann::json sweep_identity(const Settings& scene, const SweepOptions& options);
-// With options.resume and a sweep.json in options.out_dir: InputError (one line, naming what
-// changed) unless run_sweep(scene, options) would resume that same sweep. Callers check before
-// they touch the folder; run_sweep checks again.
+// InputError (one line) for options run_sweep would refuse, and, with options.resume and a
+// sweep.json in options.out_dir, unless run_sweep(scene, options) would resume that same sweep
+// (naming what changed). Callers check before they touch the folder; run_sweep checks again.
 void check_sweep_resume(const Settings& scene, const SweepOptions& options);
 // OUT/sweep.json, read (InputError of one line when OUT holds no sweep).
 nlohmann::json read_sweep_identity(const std::string& out_dir);

@@ -2,6 +2,8 @@
 // minimum-fluidization fit on synthetic curves with known answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 
@@ -93,6 +95,20 @@ TEST(Sweep, VelocitiesThatWouldShareARunFolderAreRefused) {
   }
   // Nothing was run or written for the refused sweep.
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(o.out_dir) / "runs"));
+  // From the command line, into a folder holding a finished sweep: refused before the folder is
+  // touched (its summary.json stays), one line, status 2; the same with --seeds.
+  const std::filesystem::path done = fluidbed::testing::temp_dir("sweep-close-done");
+  fluidbed::testing::write_file(done / "summary.json", "{\"umf_m_s\": 1.8}\n");
+  for (const char* seeds : {"", " --seeds 2"}) {
+    const fluidbed::testing::CommandResult c = fluidbed::testing::run_fluidbed(
+        "sweep " + std::string(FLUIDBED_ASSET_DIR) +
+            "/scenes/xu_yu_1997.toml --velocities 2.0,1.8004,1.8001 --out " + done.string() + seeds,
+        "sweep-close-cli");
+    EXPECT_EQ(c.status, 2) << c.err;
+    EXPECT_NE(c.err.find("1 mm/s"), std::string::npos) << c.err;
+    EXPECT_EQ(std::count(c.err.begin(), c.err.end(), '\n'), 1) << c.err;
+    EXPECT_EQ(fluidbed::testing::read_file(done / "summary.json"), "{\"umf_m_s\": 1.8}\n");
+  }
 }
 
 TEST(Sweep, DecreasingBranchStartsFromTheHighestFinishedRun) {
