@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <type_traits>
+#include <vector>
 
 #include "core/atomic_file.hpp"
 #include "core/binary_io.hpp"
@@ -185,7 +186,14 @@ bool has_checkpoint(const std::string& run_dir) {
 void remove_checkpoint(const std::string& run_dir) {
   std::error_code ec;
   fs::remove_all(folder_of(run_dir), ec);
-  if (const fs::path old = aside_folder(run_dir); !old.empty()) fs::remove_all(old, ec);
+  // With the ones set aside, and the half-written ones of a process killed while writing.
+  std::vector<fs::path> leftovers;
+  for (const auto& e : fs::directory_iterator(run_dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("checkpoint.old.", 0) == 0 || name.rfind("checkpoint.partial.", 0) == 0)
+      leftovers.push_back(e.path());
+  }
+  for (const fs::path& p : leftovers) fs::remove_all(p, ec);
 }
 
 }  // namespace fluidbed

@@ -51,7 +51,8 @@ void restore_recorder(const Checkpoint& c, RunRecorder& recorder);
 // Whether RUN_DIR holds a checkpoint to resume from (its checkpoint/ folder, or the previous one
 // set aside by a process killed while it replaced it).
 bool has_checkpoint(const std::string& run_dir);
-// Removes RUN_DIR's checkpoint (the run finished).
+// Removes RUN_DIR's checkpoint (the run finished), with any left half-written or set aside by a
+// process killed while it wrote one.
 void remove_checkpoint(const std::string& run_dir);
 
 }  // namespace fluidbed
