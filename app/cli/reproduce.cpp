@@ -16,6 +16,7 @@
 #include "core/threads.hpp"
 #include "output/frames.hpp"
 #include "output/plots.hpp"
+#include "run/checkpoint.hpp"
 #include "run/ensemble.hpp"
 #include "run/packed_bed.hpp"
 #include "run/run.hpp"
@@ -59,20 +60,38 @@ std::optional<TrackedRun> finished_run(const fs::path& dir) {
   }
 }
 
+// A run of the report keeps a checkpoint in DIR/checkpoint/ (run/checkpoint.hpp: every 60 wall
+// seconds once it is expected to take over 2 minutes, and at an interrupt) with its trajectories
+// and montage; `reproduce --resume` continues it from there to the same bits.
 TrackedRun run_tracked(Settings s, double until,
                        const std::vector<std::pair<double, double>>& track_at,
                        const fs::path& dir, const std::vector<double>& montage) {
   TrackedRun out;
   prepare_packed_bed(s);
+  const std::string scene_toml = to_toml(s);
+  const nlohmann::json options = {{"format", 1}, {"reproduce_run", dir.filename().string()},
+                                  {"until_s", until}, {"montage", montage}};
+  std::optional<Checkpoint> checkpoint;
+  if (resuming && has_checkpoint(dir.string())) {
+    checkpoint = read_checkpoint(dir.string());
+    if (checkpoint->scene_toml != scene_toml || checkpoint->options != options)
+      throw InputError("cannot resume " + dir.string() +
+                       ": its checkpoint is of another run (the scene or the end time differ)");
+  } else {
+    remove_checkpoint(dir.string());  // of an earlier report in this folder
+  }
   Simulation sim(s);
+  if (checkpoint) restore_simulation(*checkpoint, sim);
   TrajectoryRecorder recorder(nearest_particles(sim.dem().particles(), track_at), 0.005, s.time.dt);
+  if (checkpoint) restore_tracks(checkpoint->folder, recorder);
   std::unique_ptr<FrameOutput> pictures;  // DIR/montage.png at the given times
   if (!montage.empty()) {
     FrameOptions fo;
     fo.montage = montage;
     fo.font = asset_dir() + "/fonts/DejaVuSans.ttf";
-    pictures = std::make_unique<FrameOutput>(dir.string(), fo, sim, until);
-    pictures->observe(sim);
+    pictures = std::make_unique<FrameOutput>(dir.string(), fo, sim, until,
+                                             checkpoint ? checkpoint->folder : std::string());
+    if (!checkpoint) pictures->observe(sim);
   }
   RunOptions opt;
   opt.until = until;
@@ -82,11 +101,26 @@ TrackedRun run_tracked(Settings s, double until,
     recorder.observe(m);
     if (pictures) pictures->observe(m);
   };
+  opt.checkpoint = [&](const Simulation& x, const RunRecorder& rec, double wall) {
+    write_checkpoint(dir.string(), x, rec, wall, scene_toml, options, true,
+                     [&](const std::string& folder) {
+                       if (pictures) pictures->checkpoint(folder);
+                       save_tracks(folder, recorder);
+                     });
+  };
+  opt.checkpoint_interval = 60.0;
+  opt.checkpoint_min_run = 120.0;
+  if (checkpoint) {
+    opt.restore = [&](RunRecorder& rec) { restore_recorder(*checkpoint, rec); };
+    opt.wall_before = checkpoint->wall;
+  }
   const auto start = std::chrono::steady_clock::now();
   out.result = run_simulation(sim, opt);
   if (!out.result.completed) throw Interrupted{};
   if (pictures) pictures->finish();
-  out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  remove_checkpoint(dir.string());
+  out.wall = opt.wall_before +
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.tracks = recorder.tracks();
   return out;
 }

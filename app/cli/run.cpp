@@ -17,9 +17,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
 #include "core/atomic_file.hpp"
-#include "core/binary_io.hpp"
 #include "core/errors.hpp"
-#include "core/input_file.hpp"
 #include "core/run_pool.hpp"
 #include "core/threads.hpp"
 #include "output/frames.hpp"
@@ -332,12 +330,7 @@ int run_command(const RunArgs& given) {
                                              checkpoint ? checkpoint->folder : std::string());
     if (!checkpoint) pictures->observe(sim);  // the starting state, when it is an output time
   }
-  if (tracks && checkpoint) {
-    const std::string p = (std::filesystem::path(checkpoint->folder) / "tracks.bin").string();
-    std::ifstream in = open_input_file(p, "checkpoint trajectories");
-    BinarySource src(in, p);
-    tracks->restore(src);
-  }
+  if (tracks && checkpoint) restore_tracks(checkpoint->folder, *tracks);
   RunOptions opt;
   if (pictures || tracks)
     opt.on_step = [&](const Simulation& x) {
@@ -361,13 +354,7 @@ int run_command(const RunArgs& given) {
       write_checkpoint(out, x, rec, wall, scene_toml, options, a.bubbles,
                        [&](const std::string& folder) {
                          if (pictures) pictures->checkpoint(folder);
-                         if (!tracks) return;
-                         const std::string p =
-                             (std::filesystem::path(folder) / "tracks.bin").string();
-                         std::ofstream f(p, std::ios::binary | std::ios::trunc);
-                         tracks->save(f);
-                         f.flush();
-                         if (!f) throw InputError("cannot write " + p);
+                         if (tracks) save_tracks(folder, *tracks);
                        });
     };
     opt.checkpoint_interval = a.checkpoint_every < 0.0 ? 60.0 : a.checkpoint_every;

@@ -288,7 +288,13 @@ void FrameOutput::work() {
         }
         {
           std::lock_guard lock(mutex_);
-          saved_.stats = stats_;
+          // The worker's own figures (the engine thread keeps snapshot_s and wait_s).
+          saved_.stats.frames = stats_.frames;
+          saved_.stats.vtk_files = stats_.vtk_files;
+          saved_.stats.render_s = stats_.render_s;
+          saved_.stats.png_s = stats_.png_s;
+          saved_.stats.video_s = stats_.video_s;
+          saved_.stats.vtk_s = stats_.vtk_s;
           saved_.montage = montage;
           saved_.vtk = vtk ? vtk->written() : VtkSeries::Written{};
           saved_.video_parts = video_parts;

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include "chart/chart.hpp"
 #include "cli/commands.hpp"
+#include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/steps.hpp"
 
 namespace fluidbed::app {
@@ -174,6 +177,21 @@ void TrajectoryRecorder::restore(BinarySource& in) {
     in.get_vec(tr.x, static_cast<std::int64_t>(tr.t.size()));
     in.get_vec(tr.y, static_cast<std::int64_t>(tr.t.size()));
   }
+}
+
+void save_tracks(const std::string& folder, const TrajectoryRecorder& r) {
+  const std::string p = (std::filesystem::path(folder) / "tracks.bin").string();
+  std::ofstream f(p, std::ios::binary | std::ios::trunc);
+  r.save(f);
+  f.flush();
+  if (!f) throw InputError("cannot write " + p);
+}
+
+void restore_tracks(const std::string& folder, TrajectoryRecorder& r) {
+  const std::string p = (std::filesystem::path(folder) / "tracks.bin").string();
+  std::ifstream in = open_input_file(p, "checkpoint trajectories");
+  BinarySource src(in, p);
+  r.restore(src);
 }
 
 void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene) {

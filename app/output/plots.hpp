@@ -42,6 +42,12 @@ class TrajectoryRecorder {
   std::int64_t every_;
 };
 
+// FOLDER/tracks.bin, a run's checkpoint's copy of its tracked particles (run/checkpoint.hpp's
+// add_files): written whole (InputError when it cannot be), and read back into a recorder made
+// for the same run (InputError naming the file when it does not fit).
+void save_tracks(const std::string& folder, const TrajectoryRecorder& r);
+void restore_tracks(const std::string& folder, TrajectoryRecorder& r);
+
 void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene);
 // sweep.csv, summary.json (with umf_m_s) and sweep.png in the sweep's output folder.
 void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene);

@@ -13,7 +13,8 @@ using namespace fluidbed::testing;
 TEST(ReproduceCli, WritesEveryFigureAndTheReportAfterAnInterrupt) {
   // The report is stopped by SIGTERM two seconds into the ideal case (after the paper's bed and
   // the uniform bed finished), then finished by `reproduce --resume DIR`, which keeps the
-  // finished runs as they were.
+  // finished runs as they were and continues the stopped one from the checkpoint it wrote at the
+  // interrupt.
   const auto dir = temp_dir("reproduce");
   const std::string out = (dir / "out.txt").string(), err = (dir / "err.txt").string();
   const std::string cmd =
@@ -29,10 +30,15 @@ TEST(ReproduceCli, WritesEveryFigureAndTheReportAfterAnInterrupt) {
   EXPECT_NE(read_file(dir / "err.txt").find("resume with: fluidbed reproduce --resume"),
             std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(dir / "report.md"));
+  const bool stopped_run_kept = std::filesystem::exists(dir / "ideal/checkpoint/run.bin") ||
+                                std::filesystem::exists(dir / "ideal_geometric/checkpoint/run.bin");
+  EXPECT_TRUE(stopped_run_kept);
   const auto paper_written = std::filesystem::last_write_time(dir / "paper_bed/summary.json");
   const CommandResult r = run_fluidbed("reproduce --resume " + dir.string(), "reproduce");
   ASSERT_EQ(r.status, 0) << r.err << r.out;
   EXPECT_EQ(std::filesystem::last_write_time(dir / "paper_bed/summary.json"), paper_written);
+  for (const char* run : {"ideal/checkpoint", "ideal_geometric/checkpoint"})
+    EXPECT_FALSE(std::filesystem::exists(dir / run)) << run;
   for (const char* f : {"report.md", "sweep/sweep.png", "sweep/sweep.csv", "sweep/summary.json",
                         "paper_bed/dp.png", "paper_bed/overlap.png", "paper_bed/trajectory.png",
                         "paper_bed/summary.json", "paper_bed/bubbles.png", "paper_bed/bubbles.csv",
