@@ -18,6 +18,7 @@ struct ContactParams {
   double eta_n = 0.15;  // kg/s
   double eta_t = 0.15;  // kg/s
   double mu = 0.3;      // gamma, Coulomb friction coefficient
+  double mu_r = 0.0;    // rolling resistance (rolling_torque); 0: none
 };
 
 // Force on i, as components along n and t, and whether the contact slides.
@@ -67,6 +68,20 @@ inline ContactLoss contact_loss(const ContactParams& p, const ContactForce& f, d
     l.dashpot += p.eta_t * vt * vt * h;
   }
   return l;
+}
+
+// Rolling resistance (an option; the paper's model has none), a constant torque against the
+// relative rolling (Ai et al., Powder Technol. 206 (2011) 269, model A): on i,
+// -mu_r R_r |F_n| sign(w_rel), with w_rel = w_i - w_j (w_i at a wall), R_r = R_i R_j / (R_i + R_j)
+// (R_i at a wall) and F_n the spring's normal force (the one eq 5's Coulomb limit uses). Limited
+// to the torque that stops the relative rolling within the step h, so that it never reverses it:
+// |M| <= |w_rel| / (h k) with k = 1 / I_i + 1 / I_j (1 / I_i at a wall). It dissipates
+// |M| |w_rel| h over the step.
+inline double rolling_torque(double mu_r, double r_roll, double fn_spring, double w_rel,
+                             double inv_inertia_sum, double h) {
+  const double stop = std::fabs(w_rel) / (h * inv_inertia_sum);
+  const double m = std::min(mu_r * r_roll * std::fabs(fn_spring), stop);
+  return w_rel > 0.0 ? -m : (w_rel < 0.0 ? m : 0.0);
 }
 
 // Eq 13: the time since two spheres first touched, found by moving j back from i along the

@@ -158,6 +158,23 @@ void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
                            cs.fy.data() + k0,    cs.ft.data() + k0,      cs.ratio.data() + k0,
                            cs.dashpot.data() + k0, cs.friction.data() + k0, cs.sliding.data() + k0};
   pair_contacts(pk, li, lj, ldn, lds, on, count, params_, Incremental, dtau, out);
+  // Rolling resistance (contact.rolling_friction): a torque per contact, and its loss as friction.
+  const bool rolling = params_.mu_r > 0.0;
+  double* roll = cs.roll.data() + k0;
+  if (rolling) {
+    const double* r = a.radius;
+    const double* w = a.w;
+    const double* inv_i = a.inv_inertia;
+    for (std::int64_t q = 0; q < count; ++q) {
+      const std::int32_t k = on[q] ^ (on[q] >> 31);
+      const std::int32_t i = li[k], j = lj[k];
+      const double w_rel = w[i] - w[j];
+      roll[q] = rolling_torque(params_.mu_r, r[i] * r[j] / (r[i] + r[j]),
+                               params_.kn * std::max(out.dn[q], 0.0), w_rel, inv_i[i] + inv_i[j],
+                               dtau);
+      out.friction[q] += std::fabs(roll[q]) * std::fabs(w_rel) * dtau;
+    }
+  }
   int sliding = 0;
   std::vector<Push>& pass = passed_[static_cast<std::size_t>(t)];
   pass.clear();
@@ -172,7 +189,8 @@ void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
     max_ratio = std::max(max_ratio, ratio);
     sliding += out.sliding[q];
     ledger.add(static_cast<std::size_t>(li[k]), 0.0, ContactLoss{out.dashpot[q], out.friction[q]});
-    if (lj[k] >= end) pass.push_back(Push{out.fx[q], out.fy[q], out.ft[q], ratio, lj[k]});
+    if (lj[k] >= end)
+      pass.push_back(Push{out.fx[q], out.fy[q], out.ft[q], ratio, lj[k], rolling ? roll[q] : 0.0});
   }
   acc.contacts = static_cast<int>(count);
   acc.sliding += sliding;
@@ -241,6 +259,18 @@ bool DemSolver::particle_pass(int t, std::size_t b, std::size_t e, double dtau, 
       ov[i] = std::max(ov[i], crt[q]);
       if (j < hi) take(j, cfx[q], cfy[q], cft[q], crt[q]);
     }
+    // Rolling resistance torques, in the same order of contacts as the forces above.
+    if (params_.mu_r > 0.0) {
+      for (int u = 0; u < t; ++u)
+        for (const Push& c : passed_[static_cast<std::size_t>(u)])
+          if (c.j >= lo && c.j < hi) tq[c.j] -= c.roll;
+      const double* roll = cs.roll.data() + acc.k0;
+      for (int q = 0; q < acc.contacts; ++q) {
+        const std::int32_t k = on[q] ^ (on[q] >> 31);
+        tq[li[k]] += roll[q];
+        if (lj[k] < hi) tq[lj[k]] -= roll[q];
+      }
+    }
   }
   // Walls: only the particles that can reach one before the next neighbour-list build (listed at
   // each build, ascending).
@@ -283,12 +313,20 @@ bool DemSolver::particle_pass(int t, std::size_t b, std::size_t e, double dtau, 
       ds += vt * tau;
       const double ds_before = ds;
       const ContactForce f = contact_force(params, dn, ds, vn, vt);
-      ledger.add(i, 0.0, contact_loss(params, f, ds_before, ds, vn, vt, dtau));
+      ContactLoss loss = contact_loss(params, f, ds_before, ds, vn, vt, dtau);
+      double roll = 0.0;
+      if (params.mu_r > 0.0) {
+        roll = rolling_torque(params.mu_r, r[i], params.kn * std::max(dn, 0.0), w[i],
+                              a.inv_inertia[i], dtau);
+        loss.friction += std::fabs(roll) * std::fabs(w[i]) * dtau;
+      }
+      ledger.add(i, 0.0, loss);
       hdn[s] = dn;
       hds[s] = ds;
       fx[i] += f.fn * nx + f.ft * tx;
       fy[i] += f.fn * ny + f.ft * ty;
       tq[i] += r[i] * f.ft;
+      if (params.mu_r > 0.0) tq[i] += roll;
       sliding += f.sliding;
       max_wall_ratio = std::max(max_wall_ratio, overlap / r[i]);
       ov[i] = std::max(ov[i], 0.5 * overlap / r[i]);

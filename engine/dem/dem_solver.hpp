@@ -185,6 +185,7 @@ class DemSolver {
   struct Push {
     double fx, fy, ft, ratio;
     std::int32_t j;
+    double roll;  // rolling resistance torque on i (-roll on j); 0 without it
   };
   std::vector<std::vector<Push>> passed_;  // per thread: its contacts with j beyond its range
   // balance(): per thread, the time spent on its own particles since the last balance (padded:

@@ -33,9 +33,10 @@ struct PairSlots {
 // Scratch of the pair pass, per slot: the touching pairs' results, compact (dem/pair_kernel.hpp).
 struct ContactScratch {
   std::vector<double> dn, ds, fx, fy, ft, ratio, dashpot, friction;
+  std::vector<double> roll;  // the rolling resistance's torque on i (with contact.rolling_friction)
   std::vector<std::int32_t> sliding;
   void resize(std::size_t m) {
-    for (auto* v : {&dn, &ds, &fx, &fy, &ft, &ratio, &dashpot, &friction}) v->resize(m);
+    for (auto* v : {&dn, &ds, &fx, &fy, &ft, &ratio, &dashpot, &friction, &roll}) v->resize(m);
     sliding.resize(m);
   }
 };

@@ -15,6 +15,7 @@
 #include "core/steps.hpp"
 #include "dem/contact_law.hpp"
 #include "scene/scene_loader.hpp"
+#include "sim/model_params.hpp"
 #include "sim/placement.hpp"
 
 namespace fluidbed {
@@ -31,18 +32,11 @@ std::string num(double v) {
   return std::string(buf, r.ptr);
 }
 
-ContactParams contact_params(const Settings& s) {
-  ContactParams p;
-  p.kn = s.contact.stiffness;
-  p.kt = s.contact.stiffness * s.contact.tangential_stiffness_ratio;
-  p.eta_n = s.contact.damping;
-  p.eta_t = s.contact.damping * s.contact.tangential_damping_ratio;
-  p.mu = s.contact.friction;
-  return p;
-}
+ContactParams contact_params(const Settings& s) { return dem_params_for(s).contact; }
 
 bool same_law(const ContactParams& a, const ContactParams& b) {
-  return a.kn == b.kn && a.kt == b.kt && a.eta_n == b.eta_n && a.eta_t == b.eta_t && a.mu == b.mu;
+  return a.kn == b.kn && a.kt == b.kt && a.eta_n == b.eta_n && a.eta_t == b.eta_t && a.mu == b.mu &&
+         a.mu_r == b.mu_r;
 }
 
 void check_integrator(const Settings& s, const std::string& what) {
@@ -133,7 +127,7 @@ void write_data(std::ostream& out, const Settings& s, const Particles& p) {
 // fix property/global blocks: LIGGGHTS reads the law's numbers from these, for every pair of
 // atom types (one type here: particles and walls alike). Issued again with the same ids, they
 // replace the previous values for the next run.
-void write_law(std::ostream& out, const ContactParams& c) {
+void write_law(std::ostream& out, const ContactParams& c, bool rolling) {
   out << "fix kn     all property/global kn peratomtypepair 1 " << num(c.kn) << "     # N/m\n";
   out << "fix kt     all property/global kt peratomtypepair 1 " << num(c.kt) << "     # N/m\n";
   out << "fix gamman all property/global gamman_abs peratomtypepair 1 " << num(c.eta_n)
@@ -142,6 +136,9 @@ void write_law(std::ostream& out, const ContactParams& c) {
       << "   # kg/s\n";
   out << "fix mu     all property/global coefficientFriction peratomtypepair 1 " << num(c.mu)
       << '\n';
+  if (rolling)
+    out << "fix rmu    all property/global coefficientRollingFriction peratomtypepair 1 "
+        << num(c.mu_r) << '\n';
 }
 
 // One item of a list in the deck's comments, wrapped to lines of at most 96 characters.
@@ -169,7 +166,11 @@ void write_deck(std::ostream& out, const Settings& s, const LiggghtsExportOption
   const ContactParams law = contact_params(s);
   const bool packed = s.particles.placement == Placement::Packed;
   const PackingStage pack = packed ? packing_stage(s) : PackingStage{};
-  const std::string model = "model hooke/stiffness tangential history";
+  // contact.rolling_friction: LIGGGHTS' constant directional torque (cdt), mu_r R_eff |F_n|
+  // against the relative rotation, as fluidbed's (which takes F_n as the spring's force).
+  const bool rolling = law.mu_r > 0.0 || (packed && pack.law.mu_r > 0.0);
+  const std::string model = std::string("model hooke/stiffness tangential history") +
+                            (rolling ? " rolling_friction cdt" : "");
   const double dt0 = packed ? pack.dt : s.time.dt;
   const double g0 = packed ? pack.gravity : s.physics.gravity;
 
@@ -212,7 +213,7 @@ void write_deck(std::ostream& out, const Settings& s, const LiggghtsExportOption
   if (packed && !same_law(pack.law, law))
     out << "# The packing stage below uses the law of " << pack.from
         << "; the scene's own law replaces it after the packing.\n";
-  write_law(out, packed ? pack.law : law);
+  write_law(out, packed ? pack.law : law, rolling);
   out << "pair_style      gran " << model << " absolute_damping on\n";
   out << "pair_coeff      * *\n\n";
 
@@ -258,7 +259,7 @@ void write_deck(std::ostream& out, const Settings& s, const LiggghtsExportOption
     out << "run             " << pack_steps << "   # " << num(pack.seconds) << " s\n\n";
     out << "# Stage 2, the scene's run from the packed bed, its clock restarted.\n";
     out << "reset_timestep  0\n";
-    if (!same_law(pack.law, law)) write_law(out, law);
+    if (!same_law(pack.law, law)) write_law(out, law, rolling);
     if (pack.dt != s.time.dt) out << "timestep        " << num(s.time.dt) << "   # s\n";
     if (pack.gravity != s.physics.gravity)
       out << "fix gravity all gravity " << num(s.physics.gravity) << " vector 0.0 -1.0 0.0\n";

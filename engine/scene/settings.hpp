@@ -59,6 +59,9 @@ struct ContactSettings {
   double damping = 0.15;                  // kg/s, eta_n
   double tangential_damping_ratio = 1.0;  // eta_t / eta_n (the paper: 1)
   double friction = 0.3;                  // gamma, particles and walls
+  // Rolling resistance mu_r (the paper's model has none: 0): a torque mu_r R_r |F_n| against the
+  // contact's relative rolling, R_r = R_i R_j / (R_i + R_j) for a pair and R_i at a wall.
+  double rolling_friction = 0.0;
   // "incremental": the paper's eqs 13-17 (displacements accumulated from increments, the first
   // one over the backward-projected time since touching); "geometric": delta_n = R_i + R_j - L.
   Displacement displacement = Displacement::Incremental;
@@ -218,6 +221,9 @@ void visit_fields(ContactSettings& s, V&& v) {
   v("tangential_damping_ratio", s.tangential_damping_ratio,
     {"", non_negative, "eta_t / eta_n (the paper: 1)"});
   v("friction", s.friction, {"", non_negative, "Coulomb friction gamma, particles and walls"});
+  v("rolling_friction", s.rolling_friction,
+    {"", non_negative,
+     "rolling resistance mu_r: a torque mu_r R |F_n| against the relative rolling (0: none)"});
   v("displacement", s.displacement, {"", any, "how the contact displacements are found"});
   // Beyond a few diameters the list holds pairs that cannot touch before the next rebuild: each
   // sphere gets about 2.7 (1 + skin)^2 candidates in a packed slab, so a skin of 10^5 makes every

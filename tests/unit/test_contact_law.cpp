@@ -85,3 +85,16 @@ TEST(ContactLaw, BackwardProjectedTouchTime) {
   EXPECT_NEAR(fluidbed::time_since_touch_wall(3e-6, 1.5), 2e-6, 1e-18);
   EXPECT_DOUBLE_EQ(fluidbed::time_since_touch_wall(3e-6, -1.0), 0.0);
 }
+
+TEST(ContactLaw, RollingTorqueOpposesRelativeRollingAndNeverReversesIt) {
+  // mu_r = 0.1, R_r = 2e-3 m, |F_n| = 1 N: 2e-4 N m against w_rel, whatever the sign of F_n.
+  EXPECT_NEAR(fluidbed::rolling_torque(0.1, 2e-3, -1.0, 50.0, 1e7, 1.5e-5), -2e-4, 1e-18);
+  EXPECT_NEAR(fluidbed::rolling_torque(0.1, 2e-3, 1.0, -50.0, 1e7, 1.5e-5), 2e-4, 1e-18);
+  EXPECT_DOUBLE_EQ(fluidbed::rolling_torque(0.1, 2e-3, 1.0, 0.0, 1e7, 1.5e-5), 0.0);
+  // Slow relative rolling: 1 rad/s stops within a step of 1.5e-5 s under 1 / (1.5e-5 x 1e7)
+  // = 6.67e-3 N m... but here k = 1e9 1/(kg m^2): the cap is 1 / (1.5e-5 x 1e9) = 6.67e-5 N m,
+  // below 2e-4: the torque is the cap, which leaves w_rel at exactly 0 after the step.
+  const double m = fluidbed::rolling_torque(0.1, 2e-3, 1.0, 1.0, 1e9, 1.5e-5);
+  EXPECT_NEAR(m, -1.0 / (1.5e-5 * 1e9), 1e-18);
+  EXPECT_NEAR(1.0 + m * 1e9 * 1.5e-5, 0.0, 1e-12);
+}

@@ -288,6 +288,26 @@ TEST(LiggghtsExport, TopWallAndTheSixWallVariant) {
   EXPECT_TRUE(find_all(deck, "fix", "setforce").empty());
 }
 
+TEST(LiggghtsExport, RollingFrictionIsLiggghtsConstantDirectionalTorque) {
+  // contact.rolling_friction = 0.05: the rolling_friction cdt model on the pair style and every
+  // wall, with its coefficient among the law's values; without it (the default) none of that.
+  const fs::path dir = temp_dir("liggghts-rolling");
+  const auto deck = read_deck(
+      write_liggghts_case(packing_scene({"contact.rolling_friction=0.05"}), dir.string()).deck);
+  const auto law = law_values(deck);
+  ASSERT_EQ(law.size(), 6u);
+  EXPECT_EQ(law.back(), std::make_pair(std::string("coefficientRollingFriction"), 0.05));
+  const std::string model = "model hooke/stiffness tangential history rolling_friction cdt";
+  ASSERT_EQ(find_all(deck, "pair_style").size(), 1u);
+  EXPECT_NE(joined(find_all(deck, "pair_style")[0]).find(model), std::string::npos);
+  for (const auto& wall : find_all(deck, "fix", "wall/gran"))
+    EXPECT_NE(joined(wall).find(model), std::string::npos) << joined(wall);
+  const auto plain = read_deck(
+      write_liggghts_case(packing_scene(), (dir / "plain").string()).deck);
+  EXPECT_EQ(law_values(plain).size(), 5u);
+  EXPECT_EQ(joined(find_all(plain, "pair_style")[0]).find("rolling"), std::string::npos);
+}
+
 TEST(LiggghtsExport, SingleParticleKeepsItsVelocityAndSpin) {
   Settings s = single_particle(0.05, 0.1, 0.3, -0.2);
   s.particles.spin = 12.0;
