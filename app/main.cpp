@@ -191,6 +191,10 @@ int main(int argc, char** argv) {
                     "finish the study in folder DIR (interrupted or killed): its finished points "
                     "are read back, the rest measured; the same NAME and --size as it was started "
                     "with");
+  study->add_option("--seeds", study_args.seeds,
+                    "over several packings of the bed (stiffness, coupling, model-form): N seeds "
+                    "from the scene's or a list 3,7,11; each study in DIR/seeds/S/, the ensemble "
+                    "in DIR/ensemble.csv and DIR/summary.md");
   study->add_option("--jobs", study_args.jobs, "points at once (default: one per core)")
       ->check(CLI::NonNegativeNumber);
 

@@ -3,13 +3,100 @@
 #include "cli/study.hpp"
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "cli/interrupt.hpp"
 #include "core/errors.hpp"
 #include "core/threads.hpp"
+#include "run/ensemble.hpp"
 #include "studies/study.hpp"
 
 namespace fluidbed::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// `study NAME --seeds`: the study once per packing, one after the other (each on every worker),
+// in DIR/seeds/S/; DIR/ensemble.json says which seeds (a resume without --seeds takes them from
+// there), and the ensemble's table and summary are written at the end (write_study_ensemble).
+int study_ensemble(const study::Info& info, const study::Options& o, const StudyArgs& a) {
+  using namespace study;
+  const std::string head = "study " + std::string(info.name) + ": ";
+  if (!info.over_packings) {
+    std::string names;
+    for (const Info& i : all_studies())
+      if (i.over_packings) names += (names.empty() ? "" : ", ") + std::string(i.name);
+    throw InputError(head + "--seeds is for the studies of the packed bed's behaviour (" + names +
+                     "); this one does not start from a packing");
+  }
+  const fs::path record = fs::path(o.out) / "ensemble.json";
+  std::string text = a.seeds;
+  if (o.resume) {
+    std::ifstream in(record);
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (!in || j.is_discarded() || !j.contains("seeds") || !j["seeds"].is_string())
+      throw InputError("cannot resume " + o.out + ": it holds no study over packings (" +
+                       record.string() + ")");
+    if (j.value("study", "") != info.name || j.value("size", "") != (o.size == Size::Tiny ? "tiny" : "full"))
+      throw InputError("cannot resume " + o.out + ": it holds the study " +
+                       j.value("study", "?") + " at size " + j.value("size", "?"));
+    if (!text.empty() && text != j["seeds"].get<std::string>())
+      throw InputError("cannot resume " + o.out + ": --seeds " + text + " is not its --seeds " +
+                       j["seeds"].get<std::string>());
+    text = j["seeds"].get<std::string>();
+  }
+  const std::vector<std::uint64_t> seeds = parse_seeds(text, lattice_seed(bed_scene(o.size)));
+  std::vector<Options> members;
+  for (std::uint64_t seed : seeds) {
+    Options m = o;
+    m.out = (fs::path(o.out) / "seeds" / std::to_string(seed)).string();
+    m.seed = seed;
+    m.resume = o.resume && fs::exists(fs::path(m.out) / "study.json");
+    m.command = o.command + " --seeds " + text + " (seed " + std::to_string(seed) + ")";
+    check_study_resume(info, m);  // every member before the first point
+    members.push_back(std::move(m));
+  }
+  std::error_code ec;
+  fs::create_directories(o.out, ec);
+  if (ec) throw InputError("cannot create output folder " + o.out + ": " + ec.message());
+  for (const char* f : {"ensemble.csv", "summary.md"}) fs::remove(fs::path(o.out) / f, ec);
+  if (!o.resume)
+    write_text(record.string(), nlohmann::json{{"format", 1},
+                                               {"study", info.name},
+                                               {"size", o.size == Size::Tiny ? "tiny" : "full"},
+                                               {"seeds", text},
+                                               {"command", o.command + " --seeds " + text}}
+                                        .dump(2) +
+                                    "\n");
+  std::printf("study %s over %zu packings (%s size, %d worker threads%s): %s\n", info.name,
+              seeds.size(), o.size == Size::Tiny ? "tiny" : "full", resolve_threads(o.workers),
+              o.resume ? ", resumed" : "", info.title);
+  int points = 0, failed = 0;
+  try {
+    const InterruptGuard interrupts;
+    for (const Options& m : members) {
+      std::printf("== seed %llu\n", static_cast<unsigned long long>(*m.seed));
+      std::fflush(stdout);
+      const Report r = run_study(info, m);
+      points += r.points;
+      failed += r.failed;
+    }
+  } catch (const Interrupted&) {
+    say_interrupted("fluidbed study " + std::string(info.name) +
+                    (o.size == Size::Tiny ? " --size tiny" : "") + " --resume " + o.out);
+    return 130;
+  }
+  write_study_ensemble(info, o.out, seeds, o.size);
+  std::printf("%d points over %zu packings, %d failed runs (recorded)\n", points, seeds.size(),
+              failed);
+  std::printf("wrote %s/ensemble.csv, %s/summary.md and %s/seeds/S/\n", o.out.c_str(),
+              o.out.c_str(), o.out.c_str());
+  return 0;
+}
+
+}  // namespace
 
 int study_command(const StudyArgs& a) {
   using namespace study;
@@ -44,6 +131,8 @@ int study_command(const StudyArgs& a) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   };
+  if (!a.seeds.empty() || (o.resume && fs::exists(fs::path(o.out) / "ensemble.json")))
+    return study_ensemble(*info, o, a);
   check_study_resume(*info, o);  // before the first line: a refused resume is one line
   std::printf("study %s (%s size, %d worker threads%s): %s\n", info->name,
               o.size == Size::Tiny ? "tiny" : "full", resolve_threads(o.workers),

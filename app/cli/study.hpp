@@ -1,5 +1,5 @@
 #pragma once
-// fluidbed study NAME [--out DIR] [--size tiny|full] [--jobs N] [--resume DIR]
+// fluidbed study NAME [--out DIR] [--size tiny|full] [--jobs N] [--resume DIR] [--seeds N]
 // | fluidbed study --list
 #include <string>
 
@@ -13,6 +13,9 @@ struct StudyArgs {
   bool list = false;
   int jobs = 0;               // points at once; 0: one per core
   std::string resume;         // finish the study in this folder (its study.json)
+  // Over several packings (run/ensemble.hpp: "N" or "3,7,11"): each a whole study in
+  // DIR/seeds/S/, the ensemble in DIR/ensemble.csv and DIR/summary.md; empty: one packing.
+  std::string seeds;
 };
 
 int study_command(const StudyArgs& a);

@@ -18,6 +18,7 @@
 #include "core/hash.hpp"
 #include "core/roots.hpp"
 #include "core/threads.hpp"
+#include "run/ensemble.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
 #include "studies/study.hpp"
@@ -35,15 +36,16 @@ const std::vector<Info>& all_studies() {
        "geometric overlap",
        "about 3 min", "about 15 s", contact_study},
       {"stiffness", "Stiffness: the paper's 50,000 N/m against Tsuji's 800 N/m",
-       "about 3 min (2 x 0.8 s packing, 1.5 s bed)", "about 10 s", stiffness_study},
+       "about 3 min (2 x 0.8 s packing, 1.5 s bed)", "about 10 s", stiffness_study, true},
       {"coupling",
        "Coupling: particle steps per gas step, gas grid, SIMPLE tolerance; error against cost",
-       "about 10 min (12 runs of 1.5 s of the paper's bed)", "about 20 s", coupling_study},
+       "about 10 min (12 runs of 1.5 s of the paper's bed)", "about 20 s", coupling_study, true},
       {"modules", "What each physics module costs, and that scenes without it do not pay",
        "about 30 s", "a few s", modules_study},
       {"model-form",
        "Model form: model A (drag and -V grad p) against the paper's printed form (drag alone)",
-       "about 20 min (two sweeps, 7 and 9 velocities, 1 s each)", "about 20 s", model_form_study},
+       "about 20 min (two sweeps, 7 and 9 velocities, 1 s each)", "about 20 s", model_form_study,
+       true},
       {"failures", "Failure detection: every way a study's run can fail, reported in words",
        "under a minute", "under a second", failures_study},
       {"energy",
@@ -380,6 +382,11 @@ Settings bed_scene(Size size, const std::vector<std::string>& overrides) {
            "gas.cells_y=15"};
   all.insert(all.end(), overrides.begin(), overrides.end());
   return load_scene(asset_dir() + "/scenes/xu_yu_1997.toml", all);
+}
+
+Settings bed_scene(const Options& o, const std::vector<std::string>& overrides) {
+  Settings s = bed_scene(o.size, overrides);
+  return o.seed ? with_seed(std::move(s), *o.seed) : s;
 }
 
 void Table::add(const std::vector<std::string>& row, bool failed) {

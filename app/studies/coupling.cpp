@@ -105,7 +105,7 @@ Coupling measure(const Options& o) {
   // s of gas through the fixed bed: many gas response times (~1e-4 s), steady to 4 digits.
   const double fixed_time = m.tiny ? 0.015 : 0.03;
   m.fixed_time = fixed_time;
-  Settings base = bed_scene(o.size);
+  Settings base = bed_scene(o);
   base.diagnostics.averaging_start = averaging;
   if (o.log) o.log("packed bed (cached after the first time)");
   const std::string packed = packed_bed_state(base, o.log);

@@ -62,7 +62,7 @@ void read_run(FormResult& f) {
 // run nearest 2.8 m/s.
 std::vector<FormResult> measure(const Options& o) {
   const bool tiny = o.size == Size::Tiny;
-  Settings bed = bed_scene(o.size);
+  Settings bed = bed_scene(o);
   if (o.log) o.log("packed bed (cached after the first time)");
   const std::string packed = packed_bed_state(bed, o.log);
   bed.particles.placement = Placement::State;

@@ -28,7 +28,7 @@ StiffPoint run_stiffness(const Options& o, double k, double until, double averag
   p.k = k;
   p.tc = contact_duration(k, paper_particle_mass());
   p.dt = p.tc / 9.0;
-  Settings bed = bed_scene(o.size, {"contact.stiffness=" + num(k), "time.dt=" + num(p.dt)});
+  Settings bed = bed_scene(o, {"contact.stiffness=" + num(k), "time.dt=" + num(p.dt)});
   bed.diagnostics.averaging_start = averaging;
   // The packing, as `packed` placement would make it, kept in the study's folder (its state
   // written before the point is stored: a packing read back has its state there).

@@ -6,6 +6,7 @@
 // crash), draws its charts as PNG, and writes the summary (DIR/summary.md): what was measured,
 // the key figures, and what a user should choose.
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -38,6 +39,9 @@ struct Options {
   // point being measured throws Interrupted and is kept by no one; finished points stay).
   std::function<bool()> stop;
   std::string command;  // how the caller started the study (kept in DIR/study.json)
+  // A member of `study NAME --seeds`: its bed (bed_scene(Options)) starts from the packing of
+  // this lattice seed instead of the scene's own.
+  std::optional<std::uint64_t> seed;
 };
 
 // A study stopped by Options::stop: it wrote no study.csv, summary.md or report.json.
@@ -61,6 +65,9 @@ struct Info {
   const char* full_duration;  // how long the full size takes on two cores
   const char* tiny_duration;
   Report (*run)(const Options&);
+  // Its findings hang on the packed bed's behaviour (bubbling, dp, U_mf): `--seeds` runs it over
+  // several packings.
+  bool over_packings = false;
 };
 
 // Every study, in the order.
@@ -138,6 +145,18 @@ std::string failure_kind(const std::string& message);
 // The paper's bed (xu_yu_1997.toml); Tiny: 300 particles in a bed 0.06 m wide and 0.3 m high with
 // 6 x 15 gas cells of the paper's size and a 0.3 s packing.
 Settings bed_scene(Size size, const std::vector<std::string>& overrides = {});
+// The same for a study's options: from the packing of o.seed when set (a member of --seeds).
+Settings bed_scene(const Options& o, const std::vector<std::string>& overrides = {});
+
+// `study NAME --seeds`: the members' tables side by side, written into DIR (the members in
+// DIR/seeds/S/, each a whole study): DIR/ensemble.csv, one row per point and numeric column of
+// study.csv with its mean, standard deviation (n - 1), min, max and n over the seeds; and
+// DIR/summary.md, which names every difference from the first point that is smaller than one
+// run's spread (single runs cannot tell those apart) and says whether the ensemble resolves it
+// (the means more than two standard errors apart). InputError when the members' tables differ in
+// their columns or points.
+void write_study_ensemble(const Info& info, const std::string& dir,
+                          const std::vector<std::uint64_t>& seeds, Size size);
 
 // The bed of `fixed` (particles.frozen, a uniform inlet) at inflow U after `time` s of gas: the
 // fluid force on the particles over their weight, and dp (Pa).

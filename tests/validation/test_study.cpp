@@ -156,6 +156,53 @@ TEST(Study, StiffnessTiny) {
   EXPECT_NEAR(c.num(1, "dt_s") / c.num(0, "dt_s"), std::sqrt(50000.0 / 800.0), 1e-4);  // %.6g
 }
 
+TEST(Study, StiffnessOverTwoPackings) {
+  // `--seeds 2`: the whole study from two packings of the bed, each in seeds/S/, and the
+  // ensemble: every number of study.csv with its mean and spread, and the summary of which
+  // differences one run cannot tell.
+  const auto dir = temp_dir("study-seeds");
+  const CommandResult r = run_fluidbed(
+      "study stiffness --size tiny --seeds 2 --out " + dir.string(), "study-seeds");
+  ASSERT_EQ(r.status, 0) << r.err << r.out;
+  std::vector<Csv> members;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "seeds"))
+    members.push_back(read_csv(e.path() / "study.csv"));
+  ASSERT_EQ(members.size(), 2u);
+  ASSERT_EQ(members[0].rows.size(), 2u);
+  ASSERT_EQ(members[1].rows.size(), 2u);
+  // Two packings, two beds: the soft bed's mean dp is not the same number.
+  const double a = members[0].num(1, "dp_mean_pa"), b = members[1].num(1, "dp_mean_pa");
+  EXPECT_NE(a, b);
+  const Csv e = read_csv(dir / "ensemble.csv");
+  bool found = false;
+  for (const auto& row : e.rows)
+    if (row.at("point") == "2" && row.at("column") == "dp_mean_pa") {
+      found = true;
+      EXPECT_EQ(row.at("n"), "2");
+      EXPECT_NEAR(std::stod(row.at("mean")), 0.5 * (a + b), 1e-5 * std::fabs(a));
+      EXPECT_NEAR(std::stod(row.at("std")), std::fabs(a - b) / std::sqrt(2.0),
+                  1e-5 * std::fabs(a - b) + 1e-9);
+      EXPECT_NEAR(std::stod(row.at("min")), std::min(a, b), 1e-5 * std::fabs(a));
+    }
+  EXPECT_TRUE(found);
+  const std::string summary = read_file(dir / "summary.md");
+  EXPECT_NE(summary.find("over 2 packings"), std::string::npos);
+  EXPECT_NE(summary.find("differences compared"), std::string::npos);
+  // Resumed with nothing left to do: every point read back, the same ensemble.
+  const std::string before = read_file(dir / "ensemble.csv");
+  const CommandResult again =
+      run_fluidbed("study stiffness --size tiny --resume " + dir.string(), "study-seeds-resume");
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(read_file(dir / "ensemble.csv"), before);
+  // A study that does not start from a packing, no seeds, a seed given twice: one line, status 2.
+  for (const char* args : {"study integrators --size tiny --seeds 2", "study stiffness --seeds 0",
+                           "study stiffness --seeds 3,3"}) {
+    const CommandResult bad = run_fluidbed(args, "study-seeds-bad");
+    EXPECT_EQ(bad.status, 2) << args << ": " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << args << ": " << bad.err;
+  }
+}
+
 TEST(Study, CouplingTiny) {
   const Csv c = tiny_study("coupling", {"pareto.png"},
                            {"setting", "particle_steps_per_gas_step", "cells_x", "cells_y",
