@@ -48,10 +48,16 @@ bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
 
 // Starts ffmpeg with `args` (args[0] "ffmpeg"), standard input from `in` (or /dev/null when
 // in < 0), standard output to /dev/null; posix_spawnp's status (0: started).
+// ffmpeg gets a process group of its own: a Ctrl+C at the terminal goes to fluidbed alone, which
+// then finishes the video (or its part for a checkpoint) before it stops.
 int spawn_ffmpeg(std::vector<std::string> args, int in, pid_t* pid) {
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attr, 0);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   if (in >= 0)
@@ -59,8 +65,9 @@ int spawn_ffmpeg(std::vector<std::string> args, int in, pid_t* pid) {
   else
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  const int rc = posix_spawnp(pid, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  const int rc = posix_spawnp(pid, "ffmpeg", &actions, &attr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
   return rc;
 }
 
@@ -69,17 +76,29 @@ int spawn_ffmpeg(std::vector<std::string> args, int in, pid_t* pid) {
 void join_videos(const std::vector<std::string>& parts, const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (parts.size() == 1) {
-    fs::rename(parts[0], path, ec);
-    if (ec) throw std::runtime_error("video: cannot move " + parts[0] + " into place: " + ec.message());
+  if (parts.size() == 1) {  // a second name for it (a copy where a link cannot be made)
+    const std::string partial = path + ".part";
+    fs::remove(partial, ec);
+    fs::create_hard_link(parts[0], partial, ec);
+    if (ec) fs::copy_file(parts[0], partial, fs::copy_options::overwrite_existing, ec);
+    if (!ec) fs::rename(partial, path, ec);
+    if (ec) throw std::runtime_error("video: cannot write " + path + ": " + ec.message());
     return;
   }
   const std::string list = path + ".parts.txt", partial = path + ".part";
   {
     std::FILE* f = std::fopen(list.c_str(), "w");
     if (!f) throw std::runtime_error("video: cannot write " + list);
-    for (const std::string& p : parts)
-      std::fprintf(f, "file '%s'\n", fs::absolute(p).string().c_str());
+    for (const std::string& p : parts) {  // quoted; a quote inside as '\''
+      std::string quoted;
+      for (const char c : fs::absolute(p).string()) {
+        if (c == '\'')
+          quoted += "'\\''";
+        else
+          quoted += c;
+      }
+      std::fprintf(f, "file '%s'\n", quoted.c_str());
+    }
     if (std::fclose(f) != 0) throw std::runtime_error("video: cannot write " + list);
   }
   pid_t pid = -1;
@@ -100,7 +119,6 @@ void join_videos(const std::vector<std::string>& parts, const std::string& path)
   }
   fs::rename(partial, path, ec);
   if (ec) throw std::runtime_error("video: cannot move " + partial + " into place: " + ec.message());
-  for (const std::string& p : parts) fs::remove(p, ec);
 }
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)

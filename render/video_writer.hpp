@@ -33,8 +33,9 @@ class VideoWriter {
 };
 
 // Joins MP4 files written by VideoWriter with the same size and rate into one at `path`, without
-// encoding again (ffmpeg's concat demuxer, streams copied), and removes them; one part is renamed.
-// Throws std::runtime_error when ffmpeg fails.
+// encoding again (ffmpeg's concat demuxer, streams copied; one part is linked or copied). The
+// parts stay (a run's checkpoint may still name them). Throws std::runtime_error when ffmpeg
+// fails.
 void join_videos(const std::vector<std::string>& parts, const std::string& path);
 
 }  // namespace fluidbed::render

@@ -40,6 +40,9 @@ struct RunArgs {
   double checkpoint_every = -1.0;
   std::string resume;          // run --resume DIR: finish the run whose checkpoint DIR holds
   bool threads_given = false;  // --threads was on the command line
+  // run: the output options on the command line, by their names in a checkpoint's options.json
+  // ("frame_size", "plots", ...): a resumed run refuses one that differs from the run's.
+  std::vector<std::string> outputs_given;
   int repeat = 1;       // bench: runs of the same work (median, min and max reported)
   // run --seeds: an ensemble over packings (run/ensemble.hpp: "N" or "3,7,11"); empty: one run.
   std::string seeds;

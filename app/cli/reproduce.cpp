@@ -83,7 +83,7 @@ TrackedRun run_tracked(Settings s, double until,
   Simulation sim(s);
   if (checkpoint) restore_simulation(*checkpoint, sim);
   TrajectoryRecorder recorder(nearest_particles(sim.dem().particles(), track_at), 0.005, s.time.dt);
-  if (checkpoint) restore_tracks(checkpoint->folder, recorder);
+  if (checkpoint) restore_tracks(checkpoint->folder, recorder, sim.particle_count());
   std::unique_ptr<FrameOutput> pictures;  // DIR/montage.png at the given times
   if (!montage.empty()) {
     FrameOptions fo;
@@ -119,6 +119,7 @@ TrackedRun run_tracked(Settings s, double until,
   if (!out.result.completed) throw Interrupted{};
   if (pictures) pictures->finish();
   remove_checkpoint(dir.string());
+  remove_video_parts(dir.string());
   out.wall = opt.wall_before +
              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.tracks = recorder.tracks();

@@ -141,12 +141,11 @@ RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
     r.until = until;
     if (!a.threads_given) r.threads = o.at("threads").get<int>();
     if (a.checkpoint_every < 0.0) r.checkpoint_every = o.at("checkpoint_every_s").get<double>();
-    // The pictures, plots and bubbles are the run's: one given again (set away from its default)
-    // must be the same.
+    // The pictures, plots and bubbles are the run's: one given again must be the same.
     const nlohmann::json& outputs = o.at("outputs");
-    const nlohmann::json given = output_options(a), defaults = output_options(RunArgs{});
-    for (const auto& [key, value] : given.items())
-      if (value != defaults.at(key) && outputs.at(key) != value)
+    const nlohmann::json given = output_options(a);
+    for (const std::string& key : a.outputs_given)
+      if (const nlohmann::json& value = given.at(key); outputs.at(key) != value)
           throw InputError(head + "its output option " + key + " was " + outputs.at(key).dump() +
                            ", not " + value.dump() + " (leave the output options out to resume)");
     set_output_options(outputs, r);
@@ -330,7 +329,7 @@ int run_command(const RunArgs& given) {
                                              checkpoint ? checkpoint->folder : std::string());
     if (!checkpoint) pictures->observe(sim);  // the starting state, when it is an output time
   }
-  if (tracks && checkpoint) restore_tracks(checkpoint->folder, *tracks);
+  if (tracks && checkpoint) restore_tracks(checkpoint->folder, *tracks, sim.particle_count());
   RunOptions opt;
   if (pictures || tracks)
     opt.on_step = [&](const Simulation& x) {
@@ -386,6 +385,7 @@ int run_command(const RunArgs& given) {
   write_run_outputs(out, r);
   live.completed(sim.time());
   remove_checkpoint(out);  // the finished run's folder holds what an unstopped run's does
+  remove_video_parts(out);
   if (!s.diagnostics.save_state.empty())
     sim.save_state((std::filesystem::path(out) / s.diagnostics.save_state).string());
   std::printf(

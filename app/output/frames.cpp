@@ -190,6 +190,11 @@ FrameStats FrameOutput::finish() {
   return stats_;
 }
 
+void remove_video_parts(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::remove_all(std::filesystem::path(dir) / "video-parts", ec);
+}
+
 std::string FrameOutput::video_part(int k) const {
   char name[32];
   std::snprintf(name, sizeof name, "%03d.mp4", k);
@@ -346,7 +351,6 @@ void FrameOutput::work() {
       std::vector<std::string> parts;
       for (int k = 0; k < video_parts; ++k) parts.push_back(video_part(k));
       render::join_videos(parts, (fs::path(dir_) / "video.mp4").string());
-      fs::remove_all(fs::path(dir_) / "video-parts", ec);
       stats_.video_s += seconds_since(t0);
     }
   } catch (...) {

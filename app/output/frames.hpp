@@ -66,7 +66,8 @@ class FrameOutput {
   // The run's per-step observer: takes a snapshot when this step is an output time. Also called
   // once before the run for the starting state. Rethrows the worker's error, which ends the run.
   void observe(const Simulation& sim);
-  // Waits for the worker to write everything (the video closed, the montage drawn) and reports.
+  // Waits for the worker to write everything (the video closed and joined from its parts, the
+  // montage drawn) and reports. The parts stay until remove_video_parts.
   FrameStats finish();
   // For a run's checkpoint (cli/run.cpp), on the engine thread between steps: waits until the
   // worker has written every snapshot taken so far and closed the video's current part
@@ -117,6 +118,10 @@ class FrameOutput {
   // The fine void fraction and the bubble outlines for the snapshots (VTK, --bubble-outlines).
   std::unique_ptr<BubbleAnalysis> bubbles_;
 };
+
+// Removes DIR/video-parts/ (the parts of DIR/video.mp4): once the run's checkpoint, which may
+// name them, is gone.
+void remove_video_parts(const std::string& dir);
 
 // The options of `run` as FrameOptions (font from `assets`); InputError names a bad value.
 FrameOptions frame_options(const OutputArgs& a, const std::string& assets);

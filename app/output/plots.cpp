@@ -166,13 +166,13 @@ void TrajectoryRecorder::save(std::ostream& out) const {
   }
 }
 
-void TrajectoryRecorder::restore(BinarySource& in) {
+void TrajectoryRecorder::restore(BinarySource& in, std::size_t particles) {
   if (in.get<std::int64_t>() != every_) in.fail("inconsistent (trajectory interval)");
-  const auto n = in.get<std::uint64_t>();
-  if (n > 1000000) in.fail("inconsistent (trajectories)");
-  tracks_.assign(n, Trajectory{});
+  if (in.get<std::uint64_t>() != tracks_.size()) in.fail("inconsistent (tracked particles)");
   for (Trajectory& tr : tracks_) {
     tr.id = in.get<std::int32_t>();
+    if (tr.id < 0 || static_cast<std::size_t>(tr.id) >= particles)
+      in.fail("inconsistent (tracked particle id)");
     in.get_vec(tr.t);
     in.get_vec(tr.x, static_cast<std::int64_t>(tr.t.size()));
     in.get_vec(tr.y, static_cast<std::int64_t>(tr.t.size()));
@@ -187,11 +187,11 @@ void save_tracks(const std::string& folder, const TrajectoryRecorder& r) {
   if (!f) throw InputError("cannot write " + p);
 }
 
-void restore_tracks(const std::string& folder, TrajectoryRecorder& r) {
+void restore_tracks(const std::string& folder, TrajectoryRecorder& r, std::size_t particles) {
   const std::string p = (std::filesystem::path(folder) / "tracks.bin").string();
   std::ifstream in = open_input_file(p, "checkpoint trajectories");
   BinarySource src(in, p);
-  r.restore(src);
+  r.restore(src, particles);
 }
 
 void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene) {

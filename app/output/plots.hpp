@@ -35,7 +35,9 @@ class TrajectoryRecorder {
   const std::vector<Trajectory>& tracks() const { return tracks_; }
   // The tracks so far (ids included) as bytes and back, for a run's checkpoint.
   void save(std::ostream& out) const;
-  void restore(BinarySource& in);
+  // InputError (naming the file) unless the tracks are as many as this recorder's and their ids
+  // below `particles`.
+  void restore(BinarySource& in, std::size_t particles);
 
  private:
   std::vector<Trajectory> tracks_;
@@ -46,7 +48,7 @@ class TrajectoryRecorder {
 // add_files): written whole (InputError when it cannot be), and read back into a recorder made
 // for the same run (InputError naming the file when it does not fit).
 void save_tracks(const std::string& folder, const TrajectoryRecorder& r);
-void restore_tracks(const std::string& folder, TrajectoryRecorder& r);
+void restore_tracks(const std::string& folder, TrajectoryRecorder& r, std::size_t particles);
 
 void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene);
 // sweep.csv, summary.json (with umf_m_s) and sweep.png in the sweep's output folder.

@@ -87,7 +87,7 @@ void write_study_ensemble(const Info& info, const std::string& dir,
   for (std::uint64_t seed : seeds)
     tables.push_back(read_csv(fs::path(dir) / "seeds" / std::to_string(seed) / "study.csv"));
   const auto& first = tables.front();
-  if (first.empty()) throw InputError(dir + ": the members' study.csv is empty");
+  if (first.size() < 2) throw InputError(dir + ": the members' study.csv hold no points");
   for (std::size_t m = 1; m < tables.size(); ++m) {
     bool same = tables[m].size() == first.size() && tables[m][0] == first[0];
     for (std::size_t r = 1; same && r < first.size(); ++r)

@@ -153,8 +153,8 @@ Settings bed_scene(const Options& o, const std::vector<std::string>& overrides =
 // study.csv with its mean, standard deviation (n - 1), min, max and n over the seeds; and
 // DIR/summary.md, which names every difference from the first point that is smaller than one
 // run's spread (single runs cannot tell those apart) and says whether the ensemble resolves it
-// (the means more than two standard errors apart). InputError when the members' tables differ in
-// their columns or points.
+// (the difference taken seed by seed, its mean beyond Student's t at 95 % times its standard
+// error). InputError when the members' tables differ in their columns or points, or have none.
 void write_study_ensemble(const Info& info, const std::string& dir,
                           const std::vector<std::uint64_t>& seeds, Size size);
 

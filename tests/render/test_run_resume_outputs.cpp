@@ -114,11 +114,13 @@ TEST(RunResumeOutputs, StoppedAndResumedRunsWriteTheUnstoppedRunsFiles) {
   EXPECT_FALSE(fs::exists(term / "summary.json"));
   EXPECT_TRUE(fs::exists(term / "checkpoint" / "pictures.bin"));
   EXPECT_TRUE(fs::exists(term / "checkpoint" / "tracks.bin"));
-  // Output options given again must be the run's own.
-  const CommandResult changed =
-      run_fluidbed("run --resume \"" + term.string() + "\" --frame-size 320x240", "resume-size");
-  EXPECT_EQ(changed.status, 2);
-  EXPECT_NE(changed.err.find("frame_size"), std::string::npos) << changed.err;
+  // Output options given again must be the run's own (the default size too: it is not the run's).
+  for (const char* size : {"320x240", "1280x720"}) {
+    const CommandResult changed = run_fluidbed(
+        "run --resume \"" + term.string() + "\" --frame-size " + size, "resume-size");
+    EXPECT_EQ(changed.status, 2) << size;
+    EXPECT_NE(changed.err.find("frame_size"), std::string::npos) << changed.err;
+  }
   const CommandResult resumed = run_fluidbed("run --resume \"" + term.string() + "\"", "resume-t");
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   expect_same_outputs(ref, term);
