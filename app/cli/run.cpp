@@ -162,7 +162,9 @@ RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
 // ended.
 int run_ensemble(const RunArgs& a) {
   if (!a.resume.empty())
-    throw InputError("--seeds cannot be combined with --resume (resume each seeds/S run alone)");
+    throw InputError(
+        "--seeds cannot be combined with --resume (the runs of an ensemble keep no checkpoint: a "
+        "stopped ensemble starts again)");
   if (a.output.frames || a.output.video || a.output.vtk || !a.output.montage.empty())
     throw InputError(
         "--seeds cannot be combined with --frames, --video, --vtk or --montage (pictures are of "
