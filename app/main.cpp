@@ -240,28 +240,10 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       run_args.threads_given = run->count("--threads") > 0;
-      for (const auto& [option, key] : std::vector<std::pair<const char*, const char*>>{
-               {"--frames", "frames"},
-               {"--video", "video"},
-               {"--vtk", "vtk"},
-               {"--montage", "montage"},
-               {"--frame-interval", "frame_interval"},
-               {"--frame-size", "frame_size"},
-               {"--colour", "colour"},
-               {"--colour-range", "colour_range"},
-               {"--gas-arrows", "gas_arrows"},
-               {"--gas-arrow-colour", "gas_arrow_colour"},
-               {"--particle-arrows", "particle_arrows"},
-               {"--porosity-background", "porosity_background"},
-               {"--bubble-outlines", "bubble_outlines"},
-               {"--dark", "dark"},
-               {"--close-up", "close_up"},
-               {"--video-fps", "video_fps"},
-               {"--gl-backend", "gl_backend"},
-               {"--plots", "plots"},
-               {"--track", "track"},
-               {"--bubbles", "bubbles"}})
+      fluidbed::app::RunArgs given = run_args;
+      fluidbed::app::visit_output_options(given, [&](const char* option, const char* key, auto&) {
         if (run->count(option) > 0) run_args.outputs_given.push_back(key);
+      });
       return fluidbed::app::run_command(run_args);
     }
     if (*bench)

@@ -48,6 +48,33 @@ struct RunArgs {
   std::string seeds;
 };
 
+// Calls f(option, key, member) for each output option of `run`: its command-line name, its
+// name in a checkpoint's options.json and the member it sets (bool, double or string).
+template <class F>
+void visit_output_options(RunArgs& a, F&& f) {
+  OutputArgs& o = a.output;
+  f("--frames", "frames", o.frames);
+  f("--video", "video", o.video);
+  f("--vtk", "vtk", o.vtk);
+  f("--montage", "montage", o.montage);
+  f("--frame-interval", "frame_interval", o.frame_interval);
+  f("--frame-size", "frame_size", o.frame_size);
+  f("--colour", "colour", o.colour);
+  f("--colour-range", "colour_range", o.colour_range);
+  f("--gas-arrows", "gas_arrows", o.gas_arrows);
+  f("--gas-arrow-colour", "gas_arrow_colour", o.gas_arrow_colour);
+  f("--particle-arrows", "particle_arrows", o.particle_arrows);
+  f("--porosity-background", "porosity_background", o.porosity_background);
+  f("--bubble-outlines", "bubble_outlines", o.bubble_outlines);
+  f("--dark", "dark", o.dark);
+  f("--close-up", "close_up", o.close_up);
+  f("--video-fps", "video_fps", o.video_fps);
+  f("--gl-backend", "gl_backend", o.gl_backend);
+  f("--plots", "plots", a.plots);
+  f("--track", "track", a.track);
+  f("--bubbles", "bubbles", a.bubbles);
+}
+
 struct SweepArgs {
   std::string scene;
   std::vector<std::string> overrides;

@@ -16,6 +16,7 @@
 #include "core/threads.hpp"
 #include "output/frames.hpp"
 #include "output/plots.hpp"
+#include "output/run_checkpoint.hpp"
 #include "run/checkpoint.hpp"
 #include "run/ensemble.hpp"
 #include "run/packed_bed.hpp"
@@ -101,25 +102,15 @@ TrackedRun run_tracked(Settings s, double until,
     recorder.observe(m);
     if (pictures) pictures->observe(m);
   };
-  opt.checkpoint = [&](const Simulation& x, const RunRecorder& rec, double wall) {
-    write_checkpoint(dir.string(), x, rec, wall, scene_toml, options, true,
-                     [&](const std::string& folder) {
-                       if (pictures) pictures->checkpoint(folder);
-                       save_tracks(folder, recorder);
-                     });
-  };
+  checkpoint_with_outputs(opt, {dir.string(), scene_toml, options, true, pictures.get(), &recorder},
+                          checkpoint ? &*checkpoint : nullptr);
   opt.checkpoint_interval = 60.0;
   opt.checkpoint_min_run = 120.0;
-  if (checkpoint) {
-    opt.restore = [&](RunRecorder& rec) { restore_recorder(*checkpoint, rec); };
-    opt.wall_before = checkpoint->wall;
-  }
   const auto start = std::chrono::steady_clock::now();
   out.result = run_simulation(sim, opt);
   if (!out.result.completed) throw Interrupted{};
   if (pictures) pictures->finish();
-  remove_checkpoint(dir.string());
-  remove_video_parts(dir.string());
+  remove_run_checkpoint(dir.string());
   out.wall = opt.wall_before +
              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.tracks = recorder.tracks();

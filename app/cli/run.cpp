@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
+#include <type_traits>
 
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
@@ -22,6 +23,7 @@
 #include "core/threads.hpp"
 #include "output/frames.hpp"
 #include "output/plots.hpp"
+#include "output/run_checkpoint.hpp"
 #include "run/checkpoint.hpp"
 #include "run/ensemble.hpp"
 #include "run/live_folder.hpp"
@@ -54,53 +56,18 @@ std::vector<int> parse_ids(const std::string& list, std::size_t count) {
   return ids;
 }
 
-// What a run writes beside its summary and timeseries: pictures, plots, bubbles.
-nlohmann::json output_options(const RunArgs& a) {
-  const OutputArgs& o = a.output;
-  return {{"frames", o.frames},
-          {"video", o.video},
-          {"vtk", o.vtk},
-          {"montage", o.montage},
-          {"frame_interval", o.frame_interval},
-          {"frame_size", o.frame_size},
-          {"colour", o.colour},
-          {"colour_range", o.colour_range},
-          {"gas_arrows", o.gas_arrows},
-          {"gas_arrow_colour", o.gas_arrow_colour},
-          {"particle_arrows", o.particle_arrows},
-          {"porosity_background", o.porosity_background},
-          {"dark", o.dark},
-          {"bubble_outlines", o.bubble_outlines},
-          {"close_up", o.close_up},
-          {"video_fps", o.video_fps},
-          {"gl_backend", o.gl_backend},
-          {"plots", a.plots},
-          {"track", a.track},
-          {"bubbles", a.bubbles}};
+// What a run writes beside its summary and timeseries (pictures, plots, bubbles), by the names
+// of visit_output_options.
+nlohmann::json output_options(RunArgs a) {
+  nlohmann::json j;
+  visit_output_options(a, [&](const char*, const char* key, auto& v) { j[key] = v; });
+  return j;
 }
 
 void set_output_options(const nlohmann::json& j, RunArgs& a) {
-  OutputArgs& o = a.output;
-  o.frames = j.at("frames").get<bool>();
-  o.video = j.at("video").get<bool>();
-  o.vtk = j.at("vtk").get<bool>();
-  o.montage = j.at("montage").get<std::string>();
-  o.frame_interval = j.at("frame_interval").get<double>();
-  o.frame_size = j.at("frame_size").get<std::string>();
-  o.colour = j.at("colour").get<std::string>();
-  o.colour_range = j.at("colour_range").get<std::string>();
-  o.gas_arrows = j.at("gas_arrows").get<bool>();
-  o.gas_arrow_colour = j.at("gas_arrow_colour").get<bool>();
-  o.particle_arrows = j.at("particle_arrows").get<bool>();
-  o.porosity_background = j.at("porosity_background").get<bool>();
-  o.dark = j.at("dark").get<bool>();
-  o.bubble_outlines = j.at("bubble_outlines").get<bool>();
-  o.close_up = j.at("close_up").get<double>();
-  o.video_fps = j.at("video_fps").get<double>();
-  o.gl_backend = j.at("gl_backend").get<std::string>();
-  a.plots = j.at("plots").get<bool>();
-  a.track = j.at("track").get<std::string>();
-  a.bubbles = j.at("bubbles").get<bool>();
+  visit_output_options(a, [&](const char*, const char* key, auto& v) {
+    v = j.at(key).get<std::remove_reference_t<decltype(v)>>();
+  });
 }
 
 // How the run was started, as its checkpoint keeps it (run/checkpoint.hpp, options.json).
@@ -349,22 +316,11 @@ int run_command(const RunArgs& given) {
   }
   // Checkpoints (run/checkpoint.hpp): periodic and at an interrupt, with the pictures' and the
   // trajectories' state beside the run's.
-  {
-    const nlohmann::json options = run_options(a, until);
-    opt.checkpoint = [&, options](const Simulation& x, const RunRecorder& rec, double wall) {
-      write_checkpoint(out, x, rec, wall, scene_toml, options, a.bubbles,
-                       [&](const std::string& folder) {
-                         if (pictures) pictures->checkpoint(folder);
-                         if (tracks) save_tracks(folder, *tracks);
-                       });
-    };
-    opt.checkpoint_interval = a.checkpoint_every < 0.0 ? 60.0 : a.checkpoint_every;
-    opt.checkpoint_min_run = a.checkpoint_every < 0.0 ? 120.0 : 0.0;
-  }
-  if (checkpoint) {
-    opt.restore = [&](RunRecorder& rec) { restore_recorder(*checkpoint, rec); };
-    opt.wall_before = checkpoint->wall;
-  }
+  checkpoint_with_outputs(
+      opt, {out, scene_toml, run_options(a, until), a.bubbles, pictures.get(), tracks.get()},
+      checkpoint ? &*checkpoint : nullptr);
+  opt.checkpoint_interval = a.checkpoint_every < 0.0 ? 60.0 : a.checkpoint_every;
+  opt.checkpoint_min_run = a.checkpoint_every < 0.0 ? 120.0 : 0.0;
   opt.on_row = [&](const TimeseriesRow& row) { live.row(row); };
   opt.stop = [] { return InterruptGuard::received() != 0; };
   const InterruptGuard interrupts;
@@ -386,8 +342,7 @@ int run_command(const RunArgs& given) {
   const FrameStats picture_stats = pictures ? pictures->finish() : FrameStats{};
   write_run_outputs(out, r);
   live.completed(sim.time());
-  remove_checkpoint(out);  // the finished run's folder holds what an unstopped run's does
-  remove_video_parts(out);
+  remove_run_checkpoint(out);  // the finished run's folder holds what an unstopped run's does
   if (!s.diagnostics.save_state.empty())
     sim.save_state((std::filesystem::path(out) / s.diagnostics.save_state).string());
   std::printf(
