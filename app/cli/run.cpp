@@ -19,6 +19,7 @@
 #include "cli/progress.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/run_pool.hpp"
 #include "core/threads.hpp"
 #include "output/frames.hpp"
@@ -97,6 +98,11 @@ RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
     const nlohmann::json& o = c.options;
     if (o.at("format").get<int>() != 1)
       throw InputError(head + "the checkpoint is of another format");
+    if (o.contains("ensemble"))
+      throw InputError(head + "it is one seed of the ensemble in " +
+                       o.at("ensemble").get<std::string>() +
+                       ": resume the ensemble (fluidbed run --resume " +
+                       o.at("ensemble").get<std::string>() + ")");
     if (r.scene.empty()) r.scene = o.at("scene").get<std::string>();
     if (r.overrides.empty()) r.overrides = o.at("overrides").get<std::vector<std::string>>();
     const double until = o.at("until_s").get<double>();
@@ -122,20 +128,88 @@ RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
   return r;
 }
 
+// How `run --seeds` was started, kept in DIR/ensemble.json for `run --resume DIR`.
+nlohmann::json ensemble_identity(const RunArgs& a) {
+  nlohmann::json o = run_options(a, a.until);
+  o["kind"] = "run --seeds";
+  o["seeds"] = a.seeds;
+  return o;
+}
+
+bool is_run_ensemble(const std::string& dir) {
+  namespace fs = std::filesystem;
+  return fs::is_regular_file(fs::path(dir) / "ensemble.json") && !has_checkpoint(dir);
+}
+
+// `run --resume DIR` of an ensemble: its arguments from DIR/ensemble.json; only --threads (which
+// changes no result) may be given beside it.
+RunArgs resumed_ensemble_args(const RunArgs& given) {
+  const std::string head = "cannot resume " + given.resume + ": ";
+  if (!given.scene.empty() || !given.overrides.empty() || given.until >= 0.0 ||
+      !given.seeds.empty() || !given.outputs_given.empty() || given.checkpoint_every >= 0.0)
+    throw InputError(head + "a resumed ensemble takes its scene and options from "
+                            "DIR/ensemble.json (give only --resume DIR and, if wanted, --threads)");
+  check_resume_out(given.out, given.resume, head, "ensemble");
+  const std::string path = (std::filesystem::path(given.resume) / "ensemble.json").string();
+  RunArgs r = given;
+  r.out = given.resume;
+  try {
+    std::ifstream in = open_input_file(path, "ensemble file");
+    const nlohmann::json o = nlohmann::json::parse(in);
+    if (o.at("format").get<int>() != 1 || o.at("kind").get<std::string>() != "run --seeds")
+      throw InputError(head + path + " is not a run ensemble's");
+    r.scene = o.at("scene").get<std::string>();
+    r.overrides = o.at("overrides").get<std::vector<std::string>>();
+    r.until = o.at("until_s").get<double>();
+    if (!given.threads_given) r.threads = o.at("threads").get<int>();
+    r.checkpoint_every = o.at("checkpoint_every_s").get<double>();
+    r.seeds = o.at("seeds").get<std::string>();
+    set_output_options(o.at("outputs"), r);
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(head + path + " is not a run ensemble's");
+  }
+  return r;
+}
+
+// A member that finished before the ensemble stopped: its summary.json, and its dp against time
+// from its timeseries.csv (the first two columns, t and dp) for the ensemble's dp chart.
+bool finished_member(const std::string& dir, nlohmann::json& summary, SeedTrace& trace) {
+  namespace fs = std::filesystem;
+  const fs::path d(dir);
+  if (has_checkpoint(dir) || !fs::is_regular_file(d / "summary.json")) return false;
+  try {
+    std::ifstream in(d / "summary.json");
+    summary = nlohmann::json::parse(in);
+  } catch (const std::exception&) {
+    return false;  // unreadable: the member runs again
+  }
+  std::ifstream csv(d / "timeseries.csv");
+  std::string line;
+  std::getline(csv, line);  // header
+  while (std::getline(csv, line)) {
+    char* end = nullptr;
+    const double t = std::strtod(line.c_str(), &end);
+    if (*end != ',') break;
+    trace.t.push_back(t);
+    trace.dp.push_back(std::strtod(end + 1, nullptr));
+  }
+  return true;
+}
+
 // `run --seeds`: the scene from each packing, side by side (one run a core), each member's usual
 // files under DIR/seeds/S/, the ensemble's summary.json in DIR (run/ensemble.hpp) and, with
-// --plots, DIR/dp.png with every seed's dp. An interrupt stops every member (status 130, no
-// ensemble summary); the first member that fails fails the ensemble (status 3) once the others
-// ended.
+// --plots, DIR/dp.png with every seed's dp. Each member keeps its checkpoint as `run` does
+// (DIR/seeds/S/checkpoint/), and DIR/ensemble.json says how the ensemble was started: an
+// interrupt stops every member (status 130, no ensemble summary) and `run --resume DIR` reads the
+// finished members back, resumes the stopped ones and starts those not begun. The first member
+// that fails fails the ensemble (status 3) once the others ended.
 int run_ensemble(const RunArgs& a) {
-  if (!a.resume.empty())
-    throw InputError(
-        "--seeds cannot be combined with --resume (the runs of an ensemble keep no checkpoint: a "
-        "stopped ensemble starts again)");
+  const bool resume = !a.resume.empty();
   if (a.output.frames || a.output.video || a.output.vtk || !a.output.montage.empty())
     throw InputError(
         "--seeds cannot be combined with --frames, --video, --vtk or --montage (pictures are of "
-        "one run: run one seed with --set particles.seed=S)");
+        "one run: without --seeds, of the scene's own packing; of another seed's, with --set "
+        "particles.seed=S where the scene packs its own bed)");
   if (a.scene.empty()) throw InputError("run: give a scene file (fluidbed run SCENE.toml)");
   Settings s = load_scene(a.scene, a.overrides);
   refuse_unsafe_scene(s);
@@ -148,6 +222,18 @@ int run_ensemble(const RunArgs& a) {
   fs::create_directories(out, ec);
   if (ec) throw InputError("cannot create output folder " + out + ": " + ec.message());
   fs::remove(fs::path(out) / "summary.json", ec);  // only a finished ensemble has one
+  auto member_dir = [&](std::uint64_t seed) {
+    return (fs::path(out) / "seeds" / std::to_string(seed)).string();
+  };
+  if (!resume) {
+    // A new ensemble: no member may resume from, or be read back as, an older one's run.
+    for (const std::uint64_t seed : seeds) {
+      remove_run_checkpoint(member_dir(seed));
+      fs::remove(fs::path(member_dir(seed)) / "summary.json", ec);
+    }
+    write_file_atomically((fs::path(out) / "ensemble.json").string(),
+                          [&](std::ostream& o) { o << ensemble_identity(a).dump(2) << "\n"; });
+  }
   {
     std::ofstream scene_out(fs::path(out) / "scene.toml");
     scene_out << "# the scene as run, every value resolved (each seed's: seeds/S/scene.toml)\n"
@@ -157,13 +243,36 @@ int run_ensemble(const RunArgs& a) {
   std::vector<SeedTrace> traces(seeds.size());
   std::vector<int> completed(seeds.size(), 0);
   std::mutex print_mutex;
+  auto say = [&](const std::string& line) {
+    std::lock_guard lock(print_mutex);
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  };
   const InterruptGuard interrupts;
   auto member = [&](std::size_t k) {
     const std::uint64_t seed = seeds[k];
+    const std::string dir = member_dir(seed);
+    traces[k].seed = seed;
+    if (resume && finished_member(dir, summaries[k], traces[k])) {
+      completed[k] = 1;
+      say("seed " + std::to_string(seed) + ": finished before, read back from " + dir + "/");
+      return;
+    }
+    traces[k] = SeedTrace{seed, {}, {}};
+    if (InterruptGuard::received() != 0) return;  // not begun: a resume starts it
     Settings sk = with_seed(s, seed);
-    const std::string dir = (fs::path(out) / "seeds" / std::to_string(seed)).string();
+    const std::string scene_toml = to_toml(sk);
+    std::optional<Checkpoint> checkpoint;
+    if (resume && has_checkpoint(dir)) {
+      checkpoint = read_checkpoint(dir);
+      if (checkpoint->scene_toml != scene_toml)
+        throw InputError("cannot resume seed " + std::to_string(seed) + " in " + dir +
+                         ": its scene is not the ensemble's (" +
+                         first_difference(scene_toml, checkpoint->scene_toml) + ")");
+    }
     prepare_packed_bed(sk);
     Simulation sim(sk);
+    if (checkpoint) restore_simulation(*checkpoint, sim);
     std::unique_ptr<TrajectoryRecorder> tracks;
     if (a.plots) {
       const std::vector<int> ids =
@@ -172,8 +281,10 @@ int run_ensemble(const RunArgs& a) {
               : parse_ids(a.track, sim.particle_count());
       tracks =
           std::make_unique<TrajectoryRecorder>(ids, sk.diagnostics.output_interval, sk.time.dt);
+      if (checkpoint) restore_tracks(checkpoint->folder, *tracks, sim.particle_count());
     }
-    LiveRunFolder live(dir, sk.scene.name, a.bubbles, 1.0);
+    LiveRunFolder live(dir, sk.scene.name, a.bubbles, 1.0,
+                       checkpoint ? checkpoint->timeseries_csv : std::string());
     {
       std::ofstream scene_out(fs::path(dir) / "scene.toml");
       // A packed start from particles.packing_scene packs with that scene's own seed unless an
@@ -183,7 +294,7 @@ int run_ensemble(const RunArgs& a) {
                 << seed << " (packed: the packing scene's bed packed from that seed), which this "
                 << "file alone does not set; run it again with --seeds " << seed
                 << ",T (any other seed T)\n"
-                << to_toml(sk);
+                << scene_toml;
     }
     RunOptions opt;
     opt.until = a.until >= 0.0 ? a.until : sk.time.end;
@@ -191,6 +302,21 @@ int run_ensemble(const RunArgs& a) {
     if (tracks) opt.on_step = [&](const Simulation& x) { tracks->observe(x); };
     opt.on_row = [&](const TimeseriesRow& row) { live.row(row); };
     opt.stop = [] { return InterruptGuard::received() != 0; };
+    // The member's checkpoint, as `run`'s: periodic and at an interrupt; its options name the
+    // ensemble, which alone resumes it.
+    nlohmann::json options = run_options(a, opt.until);
+    options["ensemble"] = out;
+    options["seed"] = seed;
+    checkpoint_with_outputs(opt, {dir, scene_toml, options, a.bubbles, nullptr, tracks.get()},
+                            checkpoint ? &*checkpoint : nullptr);
+    opt.checkpoint_interval = a.checkpoint_every < 0.0 ? 60.0 : a.checkpoint_every;
+    opt.checkpoint_min_run = a.checkpoint_every < 0.0 ? 120.0 : 0.0;
+    if (checkpoint) {
+      char line[160];
+      std::snprintf(line, sizeof line, "seed %llu: resumed at t = %.6g s",
+                    static_cast<unsigned long long>(seed), sim.time());
+      say(line);
+    }
     RunResult r;
     try {
       r = run_simulation(sim, opt);
@@ -205,22 +331,22 @@ int run_ensemble(const RunArgs& a) {
     }
     write_run_outputs(dir, r);
     live.completed(sim.time());
+    remove_run_checkpoint(dir);
     if (!sk.diagnostics.save_state.empty())
       sim.save_state((fs::path(dir) / sk.diagnostics.save_state).string());
     if (tracks)
       plot_run(dir, r, tracks->tracks(), sk.domain.width, sk.domain.height, sim.has_gas());
-    traces[k].seed = seed;
     for (const auto& row : r.rows) {
       traces[k].t.push_back(row.t);
       traces[k].dp.push_back(row.dp);
     }
     summaries[k] = r.summary;
     completed[k] = 1;
-    std::lock_guard lock(print_mutex);
-    std::printf("seed %llu: t = %.4g s in %.3g s wall; wrote %s/\n",
-                static_cast<unsigned long long>(seed), sim.time(),
-                r.summary["wall_time_s"].get<double>(), dir.c_str());
-    std::fflush(stdout);
+    char line[200];
+    std::snprintf(line, sizeof line, "seed %llu: t = %.4g s in %.3g s wall; wrote %s/",
+                  static_cast<unsigned long long>(seed), sim.time(),
+                  r.summary["wall_time_s"].get<double>(), dir.c_str());
+    say(line);
   };
   // One run a core, each on a.threads threads (0: one per core, so the seeds one after another).
   const int cores = resolve_threads(0), per_run = resolve_threads(a.threads);
@@ -234,8 +360,8 @@ int run_ensemble(const RunArgs& a) {
       std::find(completed.begin(), completed.end(), 0) != completed.end()) {
     std::fprintf(stderr,
                  "interrupted: each seed's timeseries so far is in %s/seeds/S/, no ensemble "
-                 "summary.json\n",
-                 out.c_str());
+                 "summary.json; resume with: fluidbed run --resume %s\n",
+                 out.c_str(), out.c_str());
     return 130;
   }
   nlohmann::json summary = ensemble_summary(summaries, seeds);
@@ -259,7 +385,15 @@ int run_ensemble(const RunArgs& a) {
 }  // namespace
 
 int run_command(const RunArgs& given) {
-  if (!given.seeds.empty()) return run_ensemble(given);
+  if (!given.resume.empty() && is_run_ensemble(given.resume))
+    return run_ensemble(resumed_ensemble_args(given));
+  if (!given.seeds.empty()) {
+    if (!given.resume.empty())
+      throw InputError("cannot resume " + given.resume +
+                       ": it holds no ensemble (DIR/ensemble.json); a resumed ensemble takes its "
+                       "seeds from there (give only --resume DIR)");
+    return run_ensemble(given);
+  }
   std::optional<Checkpoint> checkpoint;
   RunArgs a = given;
   if (!given.resume.empty()) {

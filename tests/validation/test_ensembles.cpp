@@ -19,6 +19,8 @@ using namespace fluidbed;
 using fluidbed::testing::read_file;
 using fluidbed::testing::run_fluidbed;
 using fluidbed::testing::temp_dir;
+using fluidbed::testing::TerminatedRun;
+using fluidbed::testing::fluidbed_terminated;
 
 namespace {
 
@@ -213,4 +215,67 @@ TEST(Ensembles, SweepOverSeeds) {
   EXPECT_NE(csv.find("down,1.0000,"), std::string::npos) << csv;
   EXPECT_TRUE(std::filesystem::exists(dir / "sweep.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "seeds" / "9" / "sweep.csv"));
+}
+
+// `run --seeds` stopped and resumed (each member's checkpoint, DIR/ensemble.json): run one member
+// a time (--threads 2 on two cores), stopped by SIGTERM in the second member, so that the first
+// has finished, the second holds a checkpoint and the third has not begun. `run --resume DIR`
+// gives the unstopped ensemble's files: the same timeseries of every member, the same summary but
+// for the wall-time figures.
+TEST(Ensembles, StoppedEnsembleResumesToTheUnstoppedOnesFiles) {
+  namespace fs = std::filesystem;
+  const fs::path dir = temp_dir("ensemble-resume");
+  const std::string args = small_bed_args() + " --seeds 3 --until 2 --threads 2 --plots";
+  const auto ref = run_fluidbed(args + " --out " + (dir / "ref").string(), "ensemble-resume-ref");
+  ASSERT_EQ(ref.status, 0) << ref.err;
+
+  const fs::path stop = dir / "stop";
+  fs::create_directories(stop);
+  const fs::path second = stop / "seeds" / "2" / "timeseries.csv";
+  const TerminatedRun t = fluidbed_terminated(args + " --out " + stop.string(), stop, [&] {
+    const std::string rows = read_file(second);
+    return std::count(rows.begin(), rows.end(), '\n') > 50;
+  });
+  ASSERT_TRUE(t.terminated) << "the ensemble ended before the second member had 50 rows";
+  ASSERT_EQ(t.status, 130) << read_file(stop / "err.txt");
+  EXPECT_TRUE(fs::exists(stop / "seeds" / "1" / "summary.json"));
+  EXPECT_TRUE(fs::exists(stop / "seeds" / "2" / "checkpoint"));
+  EXPECT_FALSE(fs::exists(stop / "seeds" / "3"));
+  EXPECT_FALSE(fs::exists(stop / "summary.json"));
+  EXPECT_NE(read_file(stop / "err.txt").find("fluidbed run --resume " + stop.string()),
+            std::string::npos);
+
+  // A member alone, or the ensemble with another end time: one line, status 2.
+  for (const std::string& bad : {"run --resume " + (stop / "seeds" / "2").string(),
+                                 "run --resume " + stop.string() + " --until 3"}) {
+    const auto r = run_fluidbed(bad, "ensemble-resume-bad");
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+
+  const auto resumed = run_fluidbed("run --resume " + stop.string(), "ensemble-resume-end");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("seed 1: finished before"), std::string::npos) << resumed.out;
+  EXPECT_NE(resumed.out.find("seed 2: resumed at t = "), std::string::npos) << resumed.out;
+  for (const char* seed : {"1", "2", "3"}) {
+    EXPECT_EQ(read_file(dir / "ref" / "seeds" / seed / "timeseries.csv"),
+              read_file(stop / "seeds" / seed / "timeseries.csv"))
+        << seed;
+    EXPECT_FALSE(fs::exists(stop / "seeds" / seed / "checkpoint")) << seed;
+    EXPECT_TRUE(fs::exists(stop / "seeds" / seed / "trajectory.png")) << seed;
+  }
+  std::map<std::string, double> a, b;
+  flatten(read_json(dir / "ref" / "summary.json"), "", a);
+  flatten(read_json(stop / "summary.json"), "", b);
+  ASSERT_EQ(a.size(), b.size());
+  int compared = 0;
+  for (const auto& [key, value] : a) {
+    if (key.find("wall") != std::string::npos || key.find("particle_steps_per_s") != std::string::npos)
+      continue;
+    ASSERT_TRUE(b.count(key)) << key;
+    EXPECT_EQ(value, b[key]) << key;
+    ++compared;
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_TRUE(fs::exists(stop / "dp.png"));
 }
