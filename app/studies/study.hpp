@@ -299,5 +299,8 @@ Report modules_study(const Options& o);
 Report model_form_study(const Options& o);
 Report failures_study(const Options& o);
 Report energy_study(const Options& o);
+Report teaching_study(const Options& o);
+// The bounds the teaching scene was chosen by (README "Speed"), as teaching_study's columns.
+const std::vector<Bound>& teaching_bounds();
 
 }  // namespace fluidbed::app::study
