@@ -1,6 +1,7 @@
 // What the studies share: the registry, the point runner, the CSV table, charts and the bed.
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -52,6 +53,11 @@ const std::vector<Info>& all_studies() {
        "Energy budget of an elastic frictionless box: the residual of each integrator and "
        "contact form at the paper's step and a tenth of it",
        "about 3 min (12 runs of 20,000 steps of 2400 spheres)", "about 10 s", energy_study},
+      {"teaching",
+       "Teaching scene: the cheap settings' bed against the paper-fidelity bed, within the "
+       "bounds the teaching scene was chosen by",
+       "about 4 min (9 runs of 6 s of the paper's bed)", "about 10 s", teaching_study, true,
+       teaching_bounds()},
   };
   return list;
 }
@@ -405,6 +411,40 @@ void write_table(const std::string& dir, const Table& t, Report& rep) {
 
 double json_number(const nlohmann::json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+double json_number(const nlohmann::json& j, const char* object, const char* key) {
+  return j.is_object() && j.contains(object) ? json_number(j[object], key) : NAN;
+}
+
+Verdict judge(const std::vector<Bound>& bounds, const std::function<double(const char*)>& value,
+              const std::function<double(const char*)>& two_se) {
+  Verdict v;
+  std::vector<std::string> off, missing, unsettled;
+  for (const Bound& b : bounds) {
+    const double x = value(b.column);
+    if (!std::isfinite(x)) {
+      if (std::find(missing.begin(), missing.end(), b.missing) == missing.end())
+        missing.push_back(b.missing);
+      continue;
+    }
+    if (x < b.lo || x > b.hi) off.push_back(std::string(b.name) + " off");
+    if (two_se) {
+      const double e = two_se(b.column);
+      if (!(std::fabs(x - b.lo) > e && std::fabs(x - b.hi) > e)) unsettled.push_back(b.name);
+    }
+  }
+  auto join = [](const std::vector<std::string>& parts) {
+    std::string t;
+    for (const auto& p : parts) t += (t.empty() ? "" : ", ") + p;
+    return t;
+  };
+  off.insert(off.end(), missing.begin(), missing.end());
+  v.within = off.empty();
+  v.settled = unsettled.empty();
+  v.text = v.within ? "within" : join(off);
+  if (!v.settled) v.text += "; not settled: " + join(unsettled);
+  return v;
 }
 
 Settings drop_scene(double y) {

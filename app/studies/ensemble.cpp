@@ -79,6 +79,63 @@ double t95(int df) {
 
 std::string g(double v) { return std::isfinite(v) ? fmt("%.6g", v) : std::string(); }
 
+// The study's bounds (Info::bounds) judged on each point's mean over the seeds, not settled where
+// a bound lies within two standard errors of that mean; and the cheapest point within every
+// bound and settled, by its first cost column.
+std::string bounds_over_seeds(const std::vector<Bound>& bounds,
+                              const std::vector<std::string>& columns,
+                              const std::vector<std::vector<std::string>>& first,
+                              const std::vector<std::vector<Stat>>& stats, std::size_t seeds) {
+  auto column = [&](const std::string& name) {
+    const auto it = std::find(columns.begin(), columns.end(), name);
+    return it == columns.end() ? std::size_t{0} : static_cast<std::size_t>(it - columns.begin());
+  };
+  std::size_t cost = 0;
+  for (std::size_t c = 1; c < columns.size() && !cost; ++c)
+    if (columns[c].rfind("cost", 0) == 0) cost = c;
+  std::ostringstream md;
+  md << "## Bounds over the packings\n\nEach point's bounds judged on its mean over the seeds "
+        "(mean +- two standard errors, the standard deviation over sqrt(n)): a bound is not "
+        "settled where it lies within two standard errors of the mean, so that the ensemble "
+        "cannot tell on which side the point falls (more seeds would).\n\n| point |";
+  for (const Bound& b : bounds) md << " `" << b.column << "` |";
+  md << (cost ? " `" + columns[cost] + "` |" : std::string()) << " verdict |\n|---|";
+  for (std::size_t k = 0; k <= bounds.size() + (cost ? 1 : 0); ++k) md << "---|";
+  md << "\n";
+  std::size_t best = 0;
+  for (std::size_t r = 0; r < stats.size(); ++r) {
+    const auto two_se = [&](const char* name) {
+      const Stat& s = stats[r][column(name)];
+      return s.n > 1 ? 2.0 * s.std / std::sqrt(s.n) : NAN;
+    };
+    const Verdict v = judge(
+        bounds, [&](const char* name) { return stats[r][column(name)].mean; }, two_se);
+    md << "| " << first[r + 1][0] << " |";
+    for (const Bound& b : bounds) {
+      const Stat& s = stats[r][column(b.column)];
+      const double e = two_se(b.column);
+      md << " " << (s.n ? fmt("%.3g", s.mean) : "-") << (std::isfinite(e) ? " +- " + fmt("%.2g", e) : "");
+      if (s.n && static_cast<std::size_t>(s.n) < seeds)
+        md << " (" << s.n << " of " << seeds << " seeds)";
+      md << " |";
+    }
+    if (cost) md << " " << g(stats[r][cost].mean) << " |";
+    md << " " << v.text << " |\n";
+    if (r > 0 && cost && v.within && v.settled &&
+        (!best || stats[r][cost].mean < stats[best][cost].mean))
+      best = r;
+  }
+  if (cost)
+    md << "\n"
+       << (best ? "Cheapest within every bound, settled by the ensemble: `" + first[best + 1][0] +
+                      "` (" + g(stats[best][cost].mean) + " `" + columns[cost] + "`)."
+                : std::string("No point after the first is within every bound and settled by "
+                              "the ensemble."))
+       << "\n";
+  md << "\n";
+  return md.str();
+}
+
 }  // namespace
 
 void write_study_ensemble(const Info& info, const std::string& dir,
@@ -165,6 +222,7 @@ void write_study_ensemble(const Info& info, const std::string& dir,
     for (std::size_t r = 1; r < stats.size(); ++r) {
       const Stat& s = stats[r][c];
       if (base.n < 2 || s.n < 2) continue;
+      if (s.std == 0.0 && base.std == 0.0) continue;  // a setting, the same in every seed
       std::vector<double> d;  // seed by seed
       for (std::size_t m = 0; m < seeds.size(); ++m)
         if (std::isfinite(values[r][c][m]) && std::isfinite(values[0][c][m]))
@@ -189,7 +247,9 @@ void write_study_ensemble(const Info& info, const std::string& dir,
   md << "\n" << compared << " differences compared; " << resolved + unresolved
      << " of them are smaller than one run's spread (" << resolved
      << " resolved by the ensemble, " << unresolved << " not). The rest are larger than a run's "
-     << "spread: a single run's comparison stands for those.\n\n## The members\n\n";
+     << "spread: a single run's comparison stands for those.\n\n";
+  if (!info.bounds.empty()) md << bounds_over_seeds(info.bounds, columns, first, stats, seeds.size());
+  md << "## The members\n\n";
   for (std::uint64_t s : seeds)
     md << "- seed " << s << ": [seeds/" << s << "/summary.md](seeds/" << s << "/summary.md)\n";
   write_text((fs::path(dir) / "summary.md").string(), md.str());

@@ -59,6 +59,17 @@ struct Report {
   double wall_time = 0.0;  // s
 };
 
+// A bound a study's figure must keep: the number in study.csv's COLUMN within [lo, hi] (-inf or
+// inf for one side). `name` is how a verdict names it ("frequency off"); `missing` is the verdict
+// where the point has no such number ("no bubbles": a bed too small or calm to bubble passes
+// nothing).
+struct Bound {
+  const char* column;
+  const char* name;
+  double lo, hi;
+  const char* missing;
+};
+
 struct Info {
   const char* name;
   const char* title;
@@ -68,7 +79,22 @@ struct Info {
   // Its findings hang on the packed bed's behaviour (bubbling, dp, U_mf): `--seeds` runs it over
   // several packings.
   bool over_packings = false;
+  // Bounds its points are judged by (study.csv has a verdict column): with `--seeds`, the
+  // ensemble summary judges every point by them over the seeds (write_study_ensemble).
+  std::vector<Bound> bounds = {};
 };
+
+// A point judged by bounds: `value(column)` its number (NaN: none), `two_se(column)` two
+// standard errors of it (an ensemble's mean; absent for a single run). Off where the number lies
+// outside a bound; not settled where a bound lies within two standard errors of it (or the
+// error is unknown), so that the ensemble cannot say on which side it falls.
+struct Verdict {
+  bool within = false;   // every number there and inside its bound
+  bool settled = true;   // no bound within two standard errors
+  std::string text;      // "within", "frequency off, no bubbles", "within; not settled: eruptions"
+};
+Verdict judge(const std::vector<Bound>& bounds, const std::function<double(const char*)>& value,
+              const std::function<double(const char*)>& two_se = {});
 
 // Every study, in the order.
 const std::vector<Info>& all_studies();
@@ -189,6 +215,8 @@ void write_table(const std::string& dir, const Table& t, Report& rep);
 
 // A number of a run's summary.json; NaN when it is missing or not a number.
 double json_number(const nlohmann::json& j, const char* key);
+// A number of one of its objects (`dp_spectrum`, `bubbles`); NaN when either is missing.
+double json_number(const nlohmann::json& j, const char* object, const char* key);
 
 // A point's result as JSON and back (stored_point): fields(r, f) calls f("name", r.member) for
 // each member kept (numbers, bools, strings). A double that is not finite is written as null (as
@@ -271,5 +299,8 @@ Report modules_study(const Options& o);
 Report model_form_study(const Options& o);
 Report failures_study(const Options& o);
 Report energy_study(const Options& o);
+Report teaching_study(const Options& o);
+// The bounds the teaching scene was chosen by (README "Speed"), as teaching_study's columns.
+const std::vector<Bound>& teaching_bounds();
 
 }  // namespace fluidbed::app::study

@@ -4,9 +4,11 @@
 
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "../test_support.hpp"
+#include "scene/scene_loader.hpp"
 
 using namespace fluidbed::testing;
 
@@ -84,7 +86,7 @@ TEST(StudyCli, ListNamesEveryStudyWithItsDuration) {
   const CommandResult r = run_fluidbed("study --list", "study-list");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* n : {"integrators", "contact", "stiffness", "coupling", "modules", "model-form",
-                        "failures", "energy"})
+                        "failures", "energy", "teaching"})
     EXPECT_NE(r.out.find(n), std::string::npos) << n;
   EXPECT_NE(r.out.find("min"), std::string::npos);  // how long the full size takes
 }
@@ -294,4 +296,131 @@ TEST(Study, EnergyTiny) {
         EXPECT_LT(std::fabs(fine), 0.03 * std::fabs(coarse)) << in;
       }
     }
+}
+
+TEST(Study, TeachingTiny) {
+  // The teaching scene's bounds on the tiny bed: the paper-fidelity bed first, then the
+  // candidates, each figure with its difference from the paper-fidelity bed in % and a verdict.
+  std::filesystem::path dir;
+  const Csv c = tiny_study("teaching", {"teaching.png"},
+                           {"label", "stiffness_n_m", "dt_s", "particle_steps_per_gas_step",
+                            "tolerance", "preconditioner_refresh", "damping_kg_s",
+                            "cost_cpu_s_per_sim_s", "verdict"},
+                           &dir);
+  ASSERT_EQ(c.rows.size(), 3u);
+  EXPECT_EQ(c.rows[0].at("label"), "paper fidelity");
+  EXPECT_EQ(c.num(0, "stiffness_n_m"), 50000.0);
+  EXPECT_EQ(c.num(0, "dt_s"), 1.5e-5);
+  // figure column, its difference column (%)
+  const std::vector<std::pair<std::string, std::string>> figures = {
+      {"dp_mean_pa", "dp_mean_diff_pct"},
+      {"dp_frequency_hz", "dp_frequency_diff_pct"},
+      {"bed_height_mean_m", "bed_height_diff_pct"},
+      {"max_overlap_after_startup_pct", "max_overlap_diff_pct"},
+      {"bubble_d_eq_mean_m", "bubble_d_eq_diff_pct"},
+      {"eruption_frequency_hz", "eruption_frequency_diff_pct"}};
+  for (std::size_t r = 0; r < c.rows.size(); ++r)
+    ASSERT_EQ(c.rows[r].at("status"), "ok") << c.rows[r].at("failure");
+  // Every figure is a number of one stored point's summary.json (points/KEY.json), to the 6
+  // digits study.csv writes: the row whose mean dp is that point's.
+  const auto summary_figures = [](const nlohmann::json& j) {
+    auto at = [&](const char* object, const char* key) {
+      const nlohmann::json& o = object ? j.at(object) : j;
+      return o.contains(key) && o[key].is_number() ? o[key].get<double>() : NAN;
+    };
+    return std::vector<double>{at(nullptr, "dp_mean_pa"),
+                               at("dp_spectrum", "dominant_frequency_refined_hz"),
+                               at(nullptr, "bed_height_mean_m"),
+                               100.0 * at(nullptr, "max_overlap_ratio_after_startup"),
+                               at("bubbles", "mean_d_eq_m"), at("bubbles", "eruptions_per_s")};
+  };
+  int matched = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "points")) {
+    const nlohmann::json j = nlohmann::json::parse(read_file(e.path()));
+    if (!j.at("result").contains("summary")) continue;
+    const std::vector<double> f = summary_figures(j["result"]["summary"]);
+    for (std::size_t r = 0; r < c.rows.size(); ++r) {
+      if (std::fabs(c.num(r, "dp_mean_pa") / f[0] - 1.0) > 1e-5) continue;
+      ++matched;
+      for (std::size_t k = 0; k < figures.size(); ++k) {
+        const double v = c.num(r, figures[k].first);
+        if (std::isnan(f[k])) {
+          EXPECT_TRUE(std::isnan(v)) << figures[k].first;
+        } else {
+          EXPECT_NEAR(v, f[k], 1e-5 * std::fabs(f[k])) << figures[k].first << ", row " << r;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(matched, 3);
+  // The differences: none for the paper-fidelity bed; (candidate / paper - 1) in % for the rest
+  // (from figures of 6 digits: within 2e-3 points of %).
+  for (std::size_t r = 0; r < c.rows.size(); ++r)
+    for (const auto& [fig, diff] : figures) {
+      const double a = c.num(r, fig), b = c.num(0, fig);
+      if (std::isnan(a) || std::isnan(b) || b == 0.0) {
+        EXPECT_TRUE(std::isnan(c.num(r, diff))) << diff << ", row " << r;
+        continue;
+      }
+      const double expected = 100.0 * (a / b - 1.0);
+      if (r == 0) {
+        EXPECT_EQ(c.num(r, diff), 0.0) << diff;
+      }
+      EXPECT_NEAR(c.num(r, diff), expected, 2e-3 * std::max(1.0, a / b)) << diff << ", row " << r;
+    }
+  // The verdict against the bounds (README "Speed"): each failing bound named, a missing number
+  // ("no bubbles") never a pass.
+  struct B {
+    const char* column;
+    const char* name;
+    double lo, hi;
+    const char* missing;
+  };
+  const B bounds[] = {{"dp_mean_diff_pct", "dp", -5, 5, "no dp"},
+                      {"dp_frequency_diff_pct", "frequency", -10, 10, "no dominant dp frequency"},
+                      {"bed_height_diff_pct", "bed height", -5, 5, "no bed height"},
+                      {"max_overlap_after_startup_pct", "overlap", -1e300, 4, "no overlap"},
+                      {"bubble_d_eq_diff_pct", "bubble diameter", -15, 15, "no bubbles"},
+                      {"eruption_frequency_diff_pct", "eruptions", -15, 15, "no bubbles"}};
+  for (std::size_t r = 0; r < c.rows.size(); ++r) {
+    const std::string& verdict = c.rows[r].at("verdict");
+    bool all_within = true;
+    for (const B& b : bounds) {
+      const double v = c.num(r, b.column);
+      const bool off = v < b.lo || v > b.hi;
+      all_within = all_within && !std::isnan(v) && !off;
+      if (std::isnan(v)) {
+        EXPECT_NE(verdict.find(b.missing), std::string::npos) << verdict;
+      }
+      EXPECT_EQ(verdict.find(std::string(b.name) + " off") != std::string::npos, off)
+          << b.column << " = " << v << ": " << verdict;
+    }
+    if (all_within) {
+      EXPECT_EQ(verdict, "within") << "row " << r;
+    } else {
+      EXPECT_NE(verdict, "within") << "row " << r;
+    }
+  }
+  // The candidates' step and damping follow teaching.toml's rule: dt = the pair contact duration
+  // / 3.15 (4 digits: the README's table), damping 0.15 sqrt(kappa / 50,000); the chosen
+  // candidate is teaching.toml's settings.
+  const fluidbed::Settings scene = fluidbed::load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/teaching.toml");
+  const std::map<double, double> table_dt = {{20000.0, 4.743e-5}, {10000.0, 6.708e-5}, {5000.0, 9.487e-5}};
+  bool chosen = false;
+  for (std::size_t r = 1; r < c.rows.size(); ++r) {
+    const double k = c.num(r, "stiffness_n_m");
+    ASSERT_TRUE(table_dt.count(k)) << k;
+    EXPECT_EQ(c.num(r, "dt_s"), table_dt.at(k));
+    EXPECT_NEAR(c.num(r, "damping_kg_s"), 0.15 * std::sqrt(k / 50000.0), 1e-6 * 0.15);
+    if (k == scene.contact.stiffness &&
+        c.num(r, "particle_steps_per_gas_step") == scene.coupling.particle_steps_per_gas_step &&
+        c.num(r, "tolerance") == scene.gas.tolerance &&
+        c.num(r, "preconditioner_refresh") == scene.gas.preconditioner_refresh) {
+      chosen = true;
+      EXPECT_EQ(c.num(r, "dt_s"), scene.time.dt);
+      EXPECT_NEAR(c.num(r, "damping_kg_s"), scene.contact.damping, 1e-6 * scene.contact.damping);
+    }
+  }
+  EXPECT_TRUE(chosen);
+  EXPECT_NE(read_file(dir / "summary.md").find("Rule: the cheapest candidate"), std::string::npos);
 }
