@@ -1,7 +1,9 @@
 #pragma once
-// Particles as a structure of arrays. The bed is pseudo-three-dimensional: centres move in the
-// x-y plane on the slab's mid-plane, spin is about z only. A full 3D extension adds z, vz, az and
-// the x, y spin components as further arrays beside these; nothing here assumes a pair count.
+// Particles as a structure of arrays. In a monolayer (a slab one diameter thick, the paper's bed)
+// centres move in the x-y plane on the slab's mid-plane and spin is about z only: the depth arrays
+// below are empty. In a thicker slab (Particles::has_depth) they hold the third dimension: z, its
+// velocity, acceleration and forces, and the x and y components of spin, its rate and the torque,
+// beside the z components (w, aw, torque) that both modes share.
 #include <cstddef>
 #include <numbers>
 #include <cstdint>
@@ -21,6 +23,11 @@ struct Particles {
   std::vector<double> torque;   // N m, about z
   // Forces from outside the particle model (the gas), held constant over a step.
   std::vector<double> ext_fx, ext_fy;  // N
+  // The third dimension (empty in a monolayer): z across the slab (0 at the front wall).
+  std::vector<double> z, vz, az, fz, ext_fz;  // m, m/s, m/s^2, N, N
+  std::vector<double> wx, wy;                 // rad/s, spin about x and y
+  std::vector<double> awx, awy;               // rad/s^2
+  std::vector<double> torque_x, torque_y;     // N m
   // Constants.
   std::vector<double> radius;       // m
   std::vector<double> mass;         // kg
@@ -28,6 +35,19 @@ struct Particles {
   std::vector<double> inv_inertia;  // 1/(kg m^2), sphere: I = 2/5 m R^2
 
   std::size_t size() const { return x.size(); }
+  bool has_depth() const { return !z.empty(); }
+
+  // The depth arrays of a thick slab, sized to the particles and zero (z at `mid`, m).
+  void add_depth(double mid) {
+    for (auto* v : depth_arrays()) v->assign(size(), 0.0);
+    z.assign(size(), mid);
+  }
+  std::vector<std::vector<double>*> depth_arrays() {
+    return {&z, &vz, &az, &fz, &ext_fz, &wx, &wy, &awx, &awy, &torque_x, &torque_y};
+  }
+  std::vector<const std::vector<double>*> depth_arrays() const {
+    return {&z, &vz, &az, &fz, &ext_fz, &wx, &wy, &awx, &awy, &torque_x, &torque_y};
+  }
 
   // Raw pointers to the arrays, taken once before a hot loop (so that the compiler need not
   // reload them from the vectors after every store).
@@ -51,6 +71,8 @@ struct Particles {
     for (auto* v : {&x, &y, &vx, &vy, &w, &ax, &ay, &aw, &fx, &fy, &torque, &ext_fx, &ext_fy,
                     &radius, &mass, &inv_mass, &inv_inertia})
       v->assign(n, 0.0);
+    if (has_depth())
+      for (auto* v : depth_arrays()) v->assign(n, 0.0);
   }
 
   // Sets radius and the derived mass properties of particle i from its diameter and density.

@@ -7,7 +7,7 @@
 namespace fluidbed {
 
 namespace {
-constexpr char kSnapshotTag[8] = {'F', 'L', 'B', 'S', 'N', 'A', 'P', '1'};
+constexpr char kSnapshotTag[8] = {'F', 'L', 'B', 'S', 'N', 'A', 'P', '2'};
 }  // namespace
 
 void save_snapshot(std::ostream& out, const Snapshot& s) {
@@ -22,7 +22,7 @@ void save_snapshot(std::ostream& out, const Snapshot& s) {
     put(out, static_cast<std::int32_t>(v));
   for (const std::vector<double>* v :
        {&s.x, &s.y, &s.radius, &s.vx, &s.vy, &s.spin, &s.fx, &s.fy, &s.torque, &s.overlap,
-        &s.initial_y, &s.gas_ux, &s.gas_uy, &s.porosity, &s.pressure})
+        &s.initial_y, &s.gas_ux, &s.gas_uy, &s.porosity, &s.pressure, &s.z})
     put_vec(out, *v);
   put_vec(out, s.void_fraction);
   put_vec(out, s.bubble_edges);
@@ -46,7 +46,7 @@ void load_snapshot(BinarySource& in, Snapshot& s) {
     *v = in.get<std::int32_t>();
   for (std::vector<double>* v :
        {&s.x, &s.y, &s.radius, &s.vx, &s.vy, &s.spin, &s.fx, &s.fy, &s.torque, &s.overlap,
-        &s.initial_y, &s.gas_ux, &s.gas_uy, &s.porosity, &s.pressure})
+        &s.initial_y, &s.gas_ux, &s.gas_uy, &s.porosity, &s.pressure, &s.z})
     in.get_vec(*v);
   in.get_vec(s.void_fraction);
   in.get_vec(s.bubble_edges);
@@ -69,6 +69,7 @@ void take_snapshot(const Simulation& sim, Snapshot& out) {
   out.contacts = dem.diagnostics().pair_contacts + dem.diagnostics().wall_contacts;
   out.x = p.x;
   out.y = p.y;
+  out.z = p.z;
   out.radius = p.radius;
   out.vx = p.vx;
   out.vy = p.vy;

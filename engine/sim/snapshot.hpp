@@ -34,6 +34,7 @@ struct Snapshot {
   int contacts = 0;
   // Particles (index = particle id).
   std::vector<double> x, y, radius;     // m
+  std::vector<double> z;                // m, across the slab from the front wall (empty in a monolayer)
   std::vector<double> vx, vy, spin;     // m/s, rad/s
   std::vector<double> fx, fy, torque;   // N, N m: total force (contacts, gravity, gas) and torque
   std::vector<double> overlap;          // largest overlap ratio of each particle's contacts
