@@ -14,12 +14,15 @@ namespace fluidbed {
 struct PairContacts {
   std::vector<std::int32_t> i, j;  // particle indices, i < j, sorted by (i, j)
   std::vector<double> dn, ds;      // m, normal and tangential (shear) displacement
+  std::vector<double> ds_y, ds_z;  // a thick slab's shear vector (ds its x component); else empty
   std::size_t size() const { return i.size(); }
   void clear() {
     i.clear();
     j.clear();
     dn.clear();
     ds.clear();
+    ds_y.clear();
+    ds_z.clear();
   }
 };
 
@@ -27,6 +30,7 @@ struct WallHistory {
   int walls = 0;
   std::vector<std::uint8_t> active;  // [i * walls + w]
   std::vector<double> dn, ds;        // m, normal and tangential (shear) displacement
+  std::vector<double> ds_y, ds_z;    // a thick slab's shear vector (ds its x component); else empty
 
   // The same history with walls appended (a state saved without a top wall used in a scene with
   // one): the new walls start untouched.
@@ -34,22 +38,28 @@ struct WallHistory {
     if (wall_count <= walls) return;
     const std::size_t n = walls > 0 ? active.size() / static_cast<std::size_t>(walls) : 0;
     WallHistory wider;
-    wider.resize(n, wall_count);
+    wider.resize(n, wall_count, !ds_y.empty());
     for (std::size_t i = 0; i < n; ++i)
       for (int c = 0; c < walls; ++c) {
         const std::size_t from = i * walls + c, to = i * wall_count + c;
         wider.active[to] = active[from];
         wider.dn[to] = dn[from];
         wider.ds[to] = ds[from];
+        if (!ds_y.empty()) {
+          wider.ds_y[to] = ds_y[from];
+          wider.ds_z[to] = ds_z[from];
+        }
       }
     *this = std::move(wider);
   }
 
-  void resize(std::size_t n, int wall_count) {
+  void resize(std::size_t n, int wall_count, bool depth = false) {
     walls = wall_count;
     active.assign(n * wall_count, 0);
     dn.assign(n * wall_count, 0.0);
     ds.assign(n * wall_count, 0.0);
+    ds_y.assign(depth ? n * wall_count : 0, 0.0);
+    ds_z.assign(depth ? n * wall_count : 0, 0.0);
   }
 };
 

@@ -84,13 +84,77 @@ inline double rolling_torque(double mu_r, double r_roll, double fn_spring, doubl
   return w_rel > 0.0 ? -m : (w_rel < 0.0 ? m : 0.0);
 }
 
+// The same law in three dimensions (a thick slab). n: unit normal from i to its partner (or into
+// the wall); vr: the velocity of i's contact point relative to the partner's,
+// v_i - v_j + (R_i w_i + R_j w_j) x n (at a wall v_i + R_i w_i x n); dn: the normal displacement,
+// already advanced; s: the shear displacement vector (in/out), carried with the contact. Before
+// this step's increment s is turned into the current contact plane - its normal part removed and
+// the rest scaled back to its former length, so that a contact that rolls round its partner keeps
+// its spring's stretch without creating normal force from it (as LIGGGHTS' history does) - then
+// advanced by the tangential relative velocity over tau (eqs 15, 17 with the vector increment).
+// Eqs 3-7 with |F_t| capped at mu |F_n spring| along the spring's direction. In the plane
+// (n_z = 0, s along t = z x n) every quantity is that of contact_force.
+struct Vec3 {
+  double x = 0.0, y = 0.0, z = 0.0;
+};
+inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline Vec3 operator*(double k, const Vec3& a) { return {k * a.x, k * a.y, k * a.z}; }
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+
+struct ContactForce3 {
+  Vec3 force;   // N, on i
+  Vec3 lever;   // n x F_t (N): the torque on i is R_i lever, on a partner sphere R_j lever
+  double fn_spring = 0.0;  // N, the normal spring (eq 3), for rolling resistance
+  bool sliding = false;
+  ContactLoss loss;
+};
+inline ContactForce3 contact_force_3d(const ContactParams& p, double dn, Vec3& s, const Vec3& n,
+                                      const Vec3& vr, double tau, double h) {
+  ContactForce3 f;
+  const double vn = dot(vr, n);
+  const Vec3 vt = vr - vn * n;
+  const double s_len2 = dot(s, s);
+  if (s_len2 > 0.0) {  // into the contact plane, at its former length
+    const Vec3 in_plane = s - dot(s, n) * n;
+    const double p_len2 = dot(in_plane, in_plane);
+    s = p_len2 > 0.0 ? std::sqrt(s_len2 / p_len2) * in_plane : Vec3{};
+  }
+  s = s + tau * vt;
+  const Vec3 s_before = s;
+  f.fn_spring = -p.kn * std::max(dn, 0.0);  // eq 3
+  const double fn = f.fn_spring - p.eta_n * vn;  // eq 6
+  const Vec3 ft_spring = -p.kt * s;              // eq 4
+  const double limit = p.mu * std::fabs(f.fn_spring);  // eq 5
+  const double spring_len = std::sqrt(dot(ft_spring, ft_spring));
+  Vec3 ft;
+  if (spring_len > limit) {
+    f.sliding = true;
+    ft = (limit / spring_len) * ft_spring;  // friction alone while sliding
+    if (p.kt > 0.0) s = (-1.0 / p.kt) * ft;
+    const Vec3 slip = s_before - s;
+    f.loss.friction = limit * std::sqrt(dot(slip, slip));
+    f.loss.dashpot = p.eta_n * vn * vn * h;
+  } else {
+    ft = ft_spring - p.eta_t * vt;  // eq 7
+    f.loss.dashpot = p.eta_n * vn * vn * h + p.eta_t * dot(vt, vt) * h;
+  }
+  f.force = fn * n + ft;
+  f.lever = cross(n, ft);
+  return f;
+}
+
 // Eq 13: the time since two spheres first touched, found by moving j back from i along the
 // relative velocity until their centres are R apart. p = x_j - x_i, w = v_j - v_i, L = |p| < R.
 // Returns 0 when the spheres have no relative velocity (they were placed touching).
-inline double time_since_touch(double px, double py, double wx, double wy, double R, double L) {
-  const double ww = wx * wx + wy * wy;
+inline double time_since_touch(double px, double py, double wx, double wy, double R, double L,
+                               double pz = 0.0, double wz = 0.0) {
+  const double ww = wx * wx + wy * wy + wz * wz;
   if (ww <= 0.0) return 0.0;
-  const double pw = px * wx + py * wy;
+  const double pw = px * wx + py * wy + pz * wz;
   const double disc = pw * pw + ww * (R * R - L * L);
   return (pw + std::sqrt(std::max(disc, 0.0))) / ww;
 }

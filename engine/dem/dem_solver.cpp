@@ -58,29 +58,35 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
       gravity_(d.gravity),
       width_(d.width),
       height_(d.height),
+      thickness_(d.thickness),
       overlap_limit_(d.overlap_limit) {
+  depth_ = particles.has_depth();
+  for (std::size_t c = 0; c < walls_.size(); ++c)
+    (walls_[c].nz == 0.0 ? planar_walls_ : depth_walls_).push_back(static_cast<int>(c));
   const std::size_t n = particles.size();
   threads_ = resolve_threads(d.threads);
   // A fork costs a microsecond or two: worth it only when a step has real work.
   parallel_ = threads_ > 1 && n >= 256;
   partial_.assign(static_cast<std::size_t>(threads_), StepPartial{});
   passed_.assign(static_cast<std::size_t>(threads_), {});
+  passed_depth_.assign(static_cast<std::size_t>(threads_), {});
   busy_.assign(static_cast<std::size_t>(threads_), ThreadClock{});
   block_ke_.assign(particle_blocks(n), 0.0);
   block_ledger_.assign(particle_blocks(n), EnergyLedger{});
   double dmax = 0.0;
   for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
   skin_ = d.skin * dmax;
-  list_.configure(width_, height_, dmax, skin_, n, threads_);
+  list_.configure(width_, height_, dmax, skin_, n, threads_, depth_);
   near_wall_.assign(static_cast<std::size_t>(threads_), {});
   state_.particles = std::move(particles);
   overlap_.assign(n, 0.0);
-  state_.walls.resize(n, static_cast<int>(walls_.size()));
+  state_.walls.resize(n, static_cast<int>(walls_.size()), depth_);
   // Newmark and Verlet carry the last acceleration; at rest with no contacts it is gravity.
   auto& p = state_.particles;
   for (std::size_t i = 0; i < n; ++i) {
     p.ax[i] = p.ext_fx[i] * p.inv_mass[i];
     p.ay[i] = p.ext_fy[i] * p.inv_mass[i] - gravity_;
+    if (depth_) p.az[i] = p.ext_fz[i] * p.inv_mass[i];
   }
 }
 
@@ -91,6 +97,10 @@ void DemSolver::set_state(DemState s) {
   if (s.walls.walls != static_cast<int>(walls_.size()))
     throw InputError("state was saved with " + std::to_string(s.walls.walls) +
                      " walls but the scene has " + std::to_string(walls_.size()));
+  if (s.particles.has_depth() != depth_)
+    throw InputError(std::string("state was saved for a ") +
+                     (depth_ ? "monolayer" : "thick slab") + " but the scene is a " +
+                     (depth_ ? "thick slab" : "monolayer"));
   state_ = std::move(s);
   list_.import_history(state_.pairs);
   // Built here so that the history is in place (hashes, exports) before the next step, which
@@ -358,12 +368,22 @@ bool DemSolver::after_forces(std::size_t blk, std::size_t i0, std::size_t i1) {
   double ke = 0.0;
   for (std::size_t i = i0; i < i1; ++i)
     ke += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * w[i] * w[i] / ii[i];
+  if (depth_) {
+    const Particles& P = state_.particles;
+    for (std::size_t i = i0; i < i1; ++i)
+      ke += 0.5 * m[i] * P.vz[i] * P.vz[i] +
+            0.5 * (P.wx[i] * P.wx[i] + P.wy[i] * P.wy[i]) / ii[i];
+  }
   block_ke_[blk] = ke;
   // Every particle inside the box (with a radius of slack): branch-free; finish_step looks for
   // the culprit only when this fails.
   bool outside = false;
   for (std::size_t i = i0; i < i1; ++i)
     outside |= !(x[i] >= -r[i] && x[i] <= width_ + r[i] && y[i] >= -r[i] && y[i] <= height_ + r[i]);
+  if (depth_) {
+    const double* z = state_.particles.z.data();
+    for (std::size_t i = i0; i < i1; ++i) outside |= !(z[i] >= -r[i] && z[i] <= thickness_ + r[i]);
+  }
   return outside;
 }
 
@@ -380,7 +400,7 @@ void DemSolver::find_near_wall(std::vector<std::int32_t>& out, std::size_t b, st
   out.clear();
   for (std::size_t i = b; i < e; ++i) {
     bool near = false;
-    for (int c = 0; c < nw; ++c) {
+    for (const int c : planar_walls_) {
       const Wall& wall = walls_[static_cast<std::size_t>(c)];
       const double d = wall.nx * P.x[i] + wall.ny * P.y[i] - wall.offset;
       near = near || d < P.radius[i] + skin_ || active[i * nw + c] != 0;
@@ -489,11 +509,16 @@ void DemSolver::step_particles(const RangeWork& after) {
       block_ledger_[blk] = EnergyLedger{};
     partial_[t].k0 = list_.slots().first_begin[b];
     start = PhaseTimes::Clock::now();
-    pair_pass<Incremental>(t, e, h, partial_[t]);
+    if (depth_) {
+      pair_pass_depth(t, e, h, Incremental, partial_[t]);
+    } else {
+      pair_pass<Incremental>(t, e, h, partial_[t]);
+    }
     busy += since(start);
 #pragma omp barrier
     start = PhaseTimes::Clock::now();
-    partial_[t].outside = particle_pass<Incremental>(t, b, e, h, partial_[t]);
+    partial_[t].outside = depth_ ? particle_pass_depth(t, b, e, h, Incremental, partial_[t])
+                                 : particle_pass<Incremental>(t, b, e, h, partial_[t]);
     busy += since(start);
     lap(Phase::Contacts);
     if (after) {
@@ -531,6 +556,7 @@ void DemSolver::step(const RangeWork& after) {
     std::fill(P.vx.begin(), P.vx.end(), 0.0);
     std::fill(P.vy.begin(), P.vy.end(), 0.0);
     std::fill(P.w.begin(), P.w.end(), 0.0);
+    for (auto* v : {&P.vz, &P.wx, &P.wy}) std::fill(v->begin(), v->end(), 0.0);
     state_.time = static_cast<double>(++state_.step) * dt_;
     diag_.kinetic_energy = 0.0;
     if (after) after(0, P.size());
@@ -552,7 +578,8 @@ void DemSolver::finish_step() {
   const std::size_t n = P.size();
   if (!std::isfinite(diag_.kinetic_energy)) {
     for (std::size_t i = 0; i < n; ++i)
-      if (!std::isfinite(P.vx[i] + P.vy[i] + P.w[i] + P.x[i] + P.y[i]))
+      if (!std::isfinite(P.vx[i] + P.vy[i] + P.w[i] + P.x[i] + P.y[i]) ||
+          (depth_ && !std::isfinite(P.z[i] + P.vz[i] + P.wx[i] + P.wy[i])))
         fail("particle " + std::to_string(i) + " has a non-finite position or velocity (NaN)");
     fail("kinetic energy is not finite");
   }
@@ -572,6 +599,12 @@ void DemSolver::finish_step() {
         where = "left the bed through the bottom wall";
       else if (y[i] > height_ + r[i])
         where = "left the bed through the top";
+      else if (depth_ && !std::isfinite(P.z[i]))
+        where = "has a non-finite position (NaN)";
+      else if (depth_ && P.z[i] < -r[i])
+        where = "left the bed through the front wall";
+      else if (depth_ && P.z[i] > thickness_ + r[i])
+        where = "left the bed through the back wall";
       if (where) fail("particle " + std::to_string(i) + " " + where);
     }
   }
@@ -600,17 +633,22 @@ void DemSolver::finish_step() {
 SpringEnergy DemSolver::spring_energy() const {
   SpringEnergy e;
   const double kn = params_.kn, kt = params_.kt;
-  auto add = [&](double dn, double ds) {
+  // ds2: the shear displacement squared (a thick slab's is a vector).
+  auto add = [&](double dn, double ds2) {
     const double c = std::max(dn, 0.0);  // the normal spring acts in compression only (eq 3)
     e.normal += 0.5 * kn * c * c;
-    e.tangential += 0.5 * kt * ds * ds;
+    e.tangential += 0.5 * kt * ds2;
   };
-  const NeighbourList& L = list_;
-  for (std::size_t k = 0; k < L.size(); ++k)
-    if (L.slots().touching[k]) add(L.slots().dn[k], L.slots().ds[k]);
+  auto sq = [&](const std::vector<double>& ds, const std::vector<double>& ds_y,
+                const std::vector<double>& ds_z, std::size_t k) {
+    return ds[k] * ds[k] + (depth_ ? ds_y[k] * ds_y[k] + ds_z[k] * ds_z[k] : 0.0);
+  };
+  const PairSlots& S = list_.slots();
+  for (std::size_t k = 0; k < S.size(); ++k)
+    if (S.touching[k]) add(S.dn[k], sq(S.ds, S.ds_y, S.ds_z, k));
   const WallHistory& wh = state_.walls;
   for (std::size_t s = 0; s < wh.active.size(); ++s)
-    if (wh.active[s]) add(wh.dn[s], wh.ds[s]);
+    if (wh.active[s]) add(wh.dn[s], sq(wh.ds, wh.ds_y, wh.ds_z, s));
   return e;
 }
 
@@ -626,6 +664,8 @@ std::uint64_t DemSolver::configuration_hash() const {
   Fnv1a h;
   const Particles& P = state_.particles;
   for (const auto* v : {&P.x, &P.y, &P.vx, &P.vy, &P.w, &P.ax, &P.ay, &P.aw}) h.values(*v);
+  if (depth_)  // a monolayer's hash is what it was before the depth arrays existed
+    for (const auto* v : {&P.z, &P.vz, &P.wx, &P.wy, &P.az, &P.awx, &P.awy}) h.values(*v);
   // The touching pairs in (i, j) order: the same whatever the skin or the rebuild times.
   const NeighbourList& L = list_;
   for (std::size_t k = 0; k < L.size(); ++k) {
@@ -635,10 +675,18 @@ std::uint64_t DemSolver::configuration_hash() const {
     h.value(S.j[k]);
     h.value(S.dn[k]);
     h.value(S.ds[k]);
+    if (depth_) {
+      h.value(S.ds_y[k]);
+      h.value(S.ds_z[k]);
+    }
   }
   h.values(state_.walls.active);
   h.values(state_.walls.dn);
   h.values(state_.walls.ds);
+  if (depth_) {
+    h.values(state_.walls.ds_y);
+    h.values(state_.walls.ds_z);
+  }
   return h.digest();
 }
 

@@ -27,6 +27,7 @@ struct DemParams {
   double dt = 1.5e-5;                 // s
   double gravity = 9.81;              // m/s^2, along -y
   double width = 0.15, height = 0.9;  // m, the box the particles must stay in
+  double thickness = 0.004;           // m, the slab (a thick slab's particles stay in it too)
   std::vector<Wall> walls;            // the slab's planar walls (dem/walls.hpp)
   double skin = 0.4;                  // neighbour-list skin, fraction of the largest diameter
   double overlap_limit = 0.2;         // overlap ratio treated as a runaway
@@ -148,6 +149,10 @@ class DemSolver {
   void pair_pass(int t, std::size_t e, double dtau, StepPartial& acc);
   template <bool Incremental>
   bool particle_pass(int t, std::size_t b, std::size_t e, double dtau, StepPartial& acc);
+  // The same two passes in three dimensions (a thick slab: dem/depth_passes.cpp).
+  void pair_pass_depth(int t, std::size_t e, double dtau, bool incremental, StepPartial& acc);
+  bool particle_pass_depth(int t, std::size_t b, std::size_t e, double dtau, bool incremental,
+                           StepPartial& acc);
   void before_forces(std::size_t b, std::size_t e);
   bool after_forces(std::size_t blk, std::size_t i0, std::size_t i1);
   void finish_step();
@@ -163,7 +168,10 @@ class DemSolver {
   bool frozen_;
   double dt_;
   double gravity_;
-  double width_, height_;
+  double width_, height_, thickness_;
+  bool depth_ = false;     // the particles move in three dimensions (Particles::has_depth)
+  std::vector<int> planar_walls_;  // the walls with nz = 0, ascending
+  std::vector<int> depth_walls_;   // the front and back walls (a thick slab), ascending
   double overlap_limit_;
   int threads_ = 1;
   bool parallel_ = false;  // threads_ > 1 and enough particles to pay for a fork
@@ -188,6 +196,10 @@ class DemSolver {
     double roll;  // rolling resistance torque on i (-roll on j); 0 without it
   };
   std::vector<std::vector<Push>> passed_;  // per thread: its contacts with j beyond its range
+  struct PushDepth {  // a thick slab's further components of the same contacts
+    double fz, ftx, fty, roll_x, roll_y;
+  };
+  std::vector<std::vector<PushDepth>> passed_depth_;
   // balance(): per thread, the time spent on its own particles since the last balance (padded:
   // each thread writes its own), its measured speed (work units per second, smoothed) and the
   // work of its range.

@@ -2,7 +2,76 @@
 
 namespace fluidbed {
 
+namespace {
+
+// The depth arrays of a thick slab (Particles::has_depth) go through the same formulas as x and
+// w, component by component, in a loop of their own so that the monolayer's loops stay as they
+// were: z from vz and az, the spin about x and y from their rates.
+void predict_depth(Integrator integrator, double h, Particles& P, std::size_t b, std::size_t e) {
+  double *z = P.z.data(), *vz = P.vz.data(), *az = P.az.data();
+  double *wx = P.wx.data(), *wy = P.wy.data();
+  const double *awx = P.awx.data(), *awy = P.awy.data();
+  switch (integrator) {
+    case Integrator::Newmark: {
+      const double hh4 = 0.25 * h * h;
+      for (std::size_t i = b; i < e; ++i) {
+        z[i] += h * vz[i] + hh4 * az[i];
+        vz[i] += 0.5 * h * az[i];
+        wx[i] += 0.5 * h * awx[i];
+        wy[i] += 0.5 * h * awy[i];
+      }
+      break;
+    }
+    case Integrator::VelocityVerlet:
+      for (std::size_t i = b; i < e; ++i) {
+        vz[i] += 0.5 * h * az[i];
+        wx[i] += 0.5 * h * awx[i];
+        wy[i] += 0.5 * h * awy[i];
+        z[i] += h * vz[i];
+      }
+      break;
+    case Integrator::SymplecticEuler:
+      break;
+  }
+}
+
+void correct_depth(Integrator integrator, double h, Particles& P, std::size_t b, std::size_t e) {
+  double *z = P.z.data(), *vz = P.vz.data(), *az = P.az.data();
+  double *wx = P.wx.data(), *wy = P.wy.data(), *awx = P.awx.data(), *awy = P.awy.data();
+  const double *fz = P.fz.data(), *tx = P.torque_x.data(), *ty = P.torque_y.data();
+  const double *im = P.inv_mass.data(), *ii = P.inv_inertia.data();
+  const double hh4 = 0.25 * h * h;
+  for (std::size_t i = b; i < e; ++i) {
+    const double azi = fz[i] * im[i], awxi = tx[i] * ii[i], awyi = ty[i] * ii[i];
+    switch (integrator) {
+      case Integrator::Newmark:
+        vz[i] += 0.5 * h * azi;
+        wx[i] += 0.5 * h * awxi;
+        wy[i] += 0.5 * h * awyi;
+        z[i] += hh4 * azi;
+        break;
+      case Integrator::VelocityVerlet:
+        vz[i] += 0.5 * h * azi;
+        wx[i] += 0.5 * h * awxi;
+        wy[i] += 0.5 * h * awyi;
+        break;
+      case Integrator::SymplecticEuler:
+        vz[i] += h * azi;
+        wx[i] += h * awxi;
+        wy[i] += h * awyi;
+        z[i] += h * vz[i];
+        break;
+    }
+    az[i] = azi;
+    awx[i] = awxi;
+    awy[i] = awyi;
+  }
+}
+
+}  // namespace
+
 void predict(Integrator integrator, double h, Particles& P, std::size_t b, std::size_t e) {
+  if (P.has_depth()) predict_depth(integrator, h, P, b, e);
   const auto a = P.arrays();
   switch (integrator) {
     case Integrator::Newmark: {
@@ -31,6 +100,7 @@ void predict(Integrator integrator, double h, Particles& P, std::size_t b, std::
 }
 
 void correct(Integrator integrator, double h, Particles& P, std::size_t b, std::size_t e) {
+  if (P.has_depth()) correct_depth(integrator, h, P, b, e);
   const auto a = P.arrays();
   switch (integrator) {
     case Integrator::Newmark: {

@@ -7,8 +7,9 @@
 namespace fluidbed {
 
 void NeighbourList::configure(double width, double height, double dmax, double skin,
-                              std::size_t particles, int threads) {
+                              std::size_t particles, int threads, bool depth) {
   skin_ = skin;
+  depth_ = depth;
   // Cells wide enough that every candidate pair is in the same or adjacent cells, and no more
   // cells than about twice the particles, so a sparse scene (one dropped sphere) costs nothing.
   const double sparse = std::sqrt(width * height / (2.0 * static_cast<double>(std::max<std::size_t>(particles, 1))));
@@ -70,6 +71,10 @@ void NeighbourList::export_history(PairContacts& out) const {
     out.j.push_back(s.j[k]);
     out.dn.push_back(s.dn[k]);
     out.ds.push_back(s.ds[k]);
+    if (depth_) {
+      out.ds_y.push_back(s.ds_y[k]);
+      out.ds_z.push_back(s.ds_z[k]);
+    }
   }
 }
 
@@ -118,6 +123,10 @@ void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin
       out.dn.resize(grown);
       out.ds.resize(grown);
       out.touching.resize(grown);
+      if (depth_) {
+        out.ds_y.resize(grown);
+        out.ds_z.resize(grown);
+      }
     }
     std::int32_t o = carry ? old.first_begin[a] : 0;
     const std::int32_t oe = carry ? old.first_begin[a + 1] : 0;
@@ -131,6 +140,10 @@ void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin
       out.dn[m] = kept ? old.dn[o] : 0.0;
       out.ds[m] = kept ? old.ds[o] : 0.0;
       out.touching[m] = kept ? 1 : 0;
+      if (depth_) {
+        out.ds_y[m] = kept ? old.ds_y[o] : 0.0;
+        out.ds_z[m] = kept ? old.ds_z[o] : 0.0;
+      }
     }
   }
   out.count = m;
@@ -152,6 +165,8 @@ void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, s
     std::swap(a.j, b.j);
     std::swap(a.dn, b.dn);
     std::swap(a.ds, b.ds);
+    std::swap(a.ds_y, b.ds_y);
+    std::swap(a.ds_z, b.ds_z);
     std::swap(a.touching, b.touching);
   };
   if (t == 0) lend(f, out);
@@ -168,10 +183,14 @@ void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, s
     out.dn.resize(m);
     out.ds.resize(m);
     out.touching.resize(m);
+    if (depth_) {
+      out.ds_y.resize(m);
+      out.ds_z.resize(m);
+    }
     out.first_begin[n] = static_cast<std::int32_t>(m);
     active.resize(m);
     code.resize(m);
-    contact_scratch.resize(m);
+    contact_scratch.resize(m, depth_);
     x_ref_.resize(n);
     y_ref_.resize(n);
     cur_ = next;
@@ -188,6 +207,10 @@ void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, s
     std::copy_n(f.dn.begin(), f.count, out.dn.begin() + off);
     std::copy_n(f.ds.begin(), f.count, out.ds.begin() + off);
     std::copy_n(f.touching.begin(), f.count, out.touching.begin() + off);
+    if (depth_) {
+      std::copy_n(f.ds_y.begin(), f.count, out.ds_y.begin() + off);
+      std::copy_n(f.ds_z.begin(), f.count, out.ds_z.begin() + off);
+    }
     for (std::size_t a = begin; a < end; ++a) out.first_begin[a] += static_cast<std::int32_t>(off);
   }
   std::copy(p.x.begin() + begin, p.x.begin() + end, x_ref_.begin() + begin);
@@ -214,6 +237,10 @@ void NeighbourList::merge_seed() {
     if (o < seed_.i.size() && seed_.i[o] == s.i[k] && seed_.j[o] == s.j[k]) {
       s.dn[k] = seed_.dn[o];
       s.ds[k] = seed_.ds[o];
+      if (depth_ && !seed_.ds_y.empty()) {
+        s.ds_y[k] = seed_.ds_y[o];
+        s.ds_z[k] = seed_.ds_z[o];
+      }
       s.touching[k] = 1;
     }
   }

@@ -24,6 +24,9 @@ namespace fluidbed {
 struct PairSlots {
   std::vector<std::int32_t> i, j;
   std::vector<double> dn, ds;          // m, normal and tangential (shear) displacement
+  // In a thick slab the shear displacement is a vector: ds holds its x component, these its y
+  // and z components (empty in a monolayer, where ds is along the contact's tangent).
+  std::vector<double> ds_y, ds_z;
   std::vector<std::uint8_t> touching;  // touching at the last evaluation
   // Entries [first_begin[p], first_begin[p + 1]) have i == p (n + 1 values).
   std::vector<std::int32_t> first_begin;
@@ -35,17 +38,26 @@ struct ContactScratch {
   std::vector<double> dn, ds, fx, fy, ft, ratio, dashpot, friction;
   std::vector<double> roll;  // the rolling resistance's torque on i (with contact.rolling_friction)
   std::vector<std::int32_t> sliding;
-  void resize(std::size_t m) {
+  // A thick slab's further components: the force on i along z, the x and y components of the
+  // unit-lever torque n x F_t (ft is its z component: the torque on i is R_i n x F_t, on j
+  // R_j n x F_t), the shear displacement's y and z components and the rolling torque's x and y.
+  std::vector<double> fz, ftx, fty, ds_y, ds_z, roll_x, roll_y;
+  void resize(std::size_t m, bool depth) {
     for (auto* v : {&dn, &ds, &fx, &fy, &ft, &ratio, &dashpot, &friction, &roll}) v->resize(m);
     sliding.resize(m);
+    if (depth)
+      for (auto* v : {&fz, &ftx, &fty, &ds_y, &ds_z, &roll_x, &roll_y}) v->resize(m);
   }
 };
 
 class NeighbourList {
  public:
   // dmax: largest diameter (m); skin (m) >= 0; threads: the most that will call build().
+  // depth: the particles move in three dimensions (a thick slab). Candidates are still found by
+  // their x-y distance, a superset of the pairs within reach in 3D; since two spheres touch only
+  // when their x-y distance is below R_i + R_j, the x-y displacement alone says when it is stale.
   void configure(double width, double height, double dmax, double skin, std::size_t particles,
-                 int threads = 1);
+                 int threads = 1, bool depth = false);
 
   // Largest and second-largest squared displacement of particles [begin, end) since the last
   // build; moved2[0] >= moved2[1].
@@ -86,7 +98,7 @@ class NeighbourList {
   // One thread's pairs while a build runs (thread 0 writes straight into the new slot set).
   struct Found {
     std::vector<std::int32_t> i, j;
-    std::vector<double> dn, ds;
+    std::vector<double> dn, ds, ds_y, ds_z;
     std::vector<std::uint8_t> touching;
     std::vector<std::int32_t> near;   // scratch: one particle's partners
     std::size_t count = 0;
@@ -97,6 +109,7 @@ class NeighbourList {
 
   CellGrid grid_;
   double skin_ = 0.0;
+  bool depth_ = false;
   std::vector<double> x_ref_, y_ref_;
   bool built_ = false;
   bool built_once_ = false;  // the slot set holds a list (its history)

@@ -13,14 +13,17 @@ namespace fluidbed {
 namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'B', 'S', 'T', 'A', 'T', 'E'};
+// Version 2: a monolayer; 3: a thick slab, whose depth arrays and shear vectors follow version
+// 2's contents (so a monolayer's file is the same bytes as before thick slabs existed).
 constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersionDepth = 3;
 
 }  // namespace
 
 void write_state(std::ostream& out, const DemState& s) {
   out.write(kMagic, sizeof kMagic);
-  put(out, kVersion);
   const auto& P = s.particles;
+  put(out, P.has_depth() ? kVersionDepth : kVersion);
   put(out, static_cast<std::uint64_t>(P.size()));
   put(out, static_cast<std::int32_t>(s.walls.walls));
   put(out, s.time);
@@ -36,6 +39,13 @@ void write_state(std::ostream& out, const DemState& s) {
   put_vec(out, s.walls.active);
   put_vec(out, s.walls.dn);
   put_vec(out, s.walls.ds);
+  if (P.has_depth()) {
+    for (const auto* v : P.depth_arrays()) put_vec(out, *v);
+    put_vec(out, s.pairs.ds_y);
+    put_vec(out, s.pairs.ds_z);
+    put_vec(out, s.walls.ds_y);
+    put_vec(out, s.walls.ds_z);
+  }
 }
 
 DemState read_state(std::istream& in, const std::string& origin) {
@@ -44,7 +54,8 @@ DemState read_state(std::istream& in, const std::string& origin) {
   in.read(magic, sizeof magic);
   if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
     throw InputError(origin + ": not a fluidbed state file");
-  if (src.get<std::uint32_t>() != kVersion)
+  const auto version = src.get<std::uint32_t>();
+  if (version != kVersion && version != kVersionDepth)
     throw InputError(origin + ": state file version is not supported");
   DemState s;
   const auto count = src.get<std::uint64_t>();
@@ -66,6 +77,14 @@ DemState read_state(std::istream& in, const std::string& origin) {
   src.get_vec(s.walls.active, n * walls);
   src.get_vec(s.walls.dn, n * walls);
   src.get_vec(s.walls.ds, n * walls);
+  if (version == kVersionDepth) {
+    for (auto* v : P.depth_arrays()) src.get_vec(*v, n);
+    const auto pairs = static_cast<std::int64_t>(s.pairs.i.size());
+    src.get_vec(s.pairs.ds_y, pairs);
+    src.get_vec(s.pairs.ds_z, pairs);
+    src.get_vec(s.walls.ds_y, n * walls);
+    src.get_vec(s.walls.ds_z, n * walls);
+  }
   // Pairs: i < j, inside the particle range, sorted by (i, j).
   for (std::size_t k = 0; k < s.pairs.size(); ++k) {
     const auto i = s.pairs.i[k], j = s.pairs.j[k];

@@ -18,7 +18,8 @@ DemParams dem_params_for(const Settings& s) {
   d.gravity = s.physics.gravity;
   d.width = s.domain.width;
   d.height = s.domain.height;
-  d.walls = slab_walls(s.domain);
+  d.thickness = s.domain.thickness;
+  d.walls = slab_walls(s.domain, slab_has_depth(s.domain, s.particles.diameter));
   d.skin = s.contact.skin;
   d.overlap_limit = s.diagnostics.overlap_limit;
   d.frozen = s.particles.frozen;

@@ -98,3 +98,61 @@ TEST(ContactLaw, RollingTorqueOpposesRelativeRollingAndNeverReversesIt) {
   EXPECT_NEAR(m, -1.0 / (1.5e-5 * 1e9), 1e-18);
   EXPECT_NEAR(1.0 + m * 1e9 * 1.5e-5, 0.0, 1e-12);
 }
+
+TEST(ContactLaw, ThreeDimensionalLawInThePlaneIsThePlanarLaw) {
+  // n in the x-y plane, the shear along t = z x n, the relative velocity in the plane: every
+  // component of contact_force_3d is contact_force's, sticking and sliding.
+  const ContactParams p = paper();
+  const double a = 0.4;
+  const fluidbed::Vec3 n{std::cos(a), std::sin(a), 0.0}, t{-std::sin(a), std::cos(a), 0.0};
+  for (const double ds0 : {1e-7, 3e-5}) {  // sticks, then slides (|kt ds| > mu kn dn)
+    const double dn = 1e-5, vn = 0.2, vt = -0.1, tau = 1e-6, h = 1.5e-5;
+    double ds = ds0 + vt * tau;
+    const auto f2 = fluidbed::contact_force(p, dn, ds, vn, vt);
+    fluidbed::Vec3 s = ds0 * t;
+    const auto f3 = fluidbed::contact_force_3d(p, dn, s, n, vn * n + vt * t, tau, h);
+    EXPECT_EQ(f3.sliding, f2.sliding);
+    EXPECT_NEAR(f3.force.x, f2.fn * n.x + f2.ft * t.x, 1e-15);
+    EXPECT_NEAR(f3.force.y, f2.fn * n.y + f2.ft * t.y, 1e-15);
+    EXPECT_EQ(f3.force.z, 0.0);
+    EXPECT_NEAR(f3.lever.z, f2.ft, 1e-15);  // n x t = z
+    EXPECT_NEAR(fluidbed::dot(s, t), ds, 1e-18);
+  }
+}
+
+TEST(ContactLaw, ShearTurnsIntoTheContactPlaneAtItsLength) {
+  // A shear of 2e-6 m along x while the normal has turned to (0.6, 0.8, 0): its normal part
+  // (0.6 x 2e-6) is removed and the rest, (0.64, -0.48, 0) x 2e-6, scaled back to 2e-6 m:
+  // (0.8, -0.6, 0) x 2e-6. With no relative motion and kt = 0 nothing else changes it.
+  ContactParams p = paper();
+  p.kt = 0.0;
+  fluidbed::Vec3 s{2e-6, 0.0, 0.0};
+  fluidbed::contact_force_3d(p, 1e-6, s, {0.6, 0.8, 0.0}, {}, 1e-6, 1e-6);
+  EXPECT_NEAR(s.x, 0.8 * 2e-6, 1e-21);
+  EXPECT_NEAR(s.y, -0.6 * 2e-6, 1e-21);
+  EXPECT_DOUBLE_EQ(s.z, 0.0);
+  // Sliding in 3D: the friction force is mu |F_n spring| along the spring, and the spring is
+  // held there. kn = kt = 5e4 N/m, dn = 1e-5 m: limit 0.3 x 0.5 N = 0.15 N; shear (3, 0, 4)e-5 m
+  // pulls with 2.5 N, beyond it: F_t = -0.15 N along (0.6, 0, 0.8), s = F_t / -kt = (1.8, 0,
+  // 2.4)e-6 m. The normal (0, 1, 0) and no relative motion: F = (-0.09, -0.5, -0.12) N.
+  const ContactParams q = paper();
+  fluidbed::Vec3 s2{3e-5, 0.0, 4e-5};
+  const auto f = fluidbed::contact_force_3d(q, 1e-5, s2, {0.0, 1.0, 0.0}, {}, 0.0, 1.5e-5);
+  EXPECT_TRUE(f.sliding);
+  EXPECT_NEAR(f.force.x, -0.09, 1e-15);
+  EXPECT_NEAR(f.force.y, -0.5, 1e-15);
+  EXPECT_NEAR(f.force.z, -0.12, 1e-15);
+  EXPECT_NEAR(s2.x, 1.8e-6, 1e-20);
+  EXPECT_NEAR(s2.z, 2.4e-6, 1e-20);
+  // lever = n x F_t = (0, 1, 0) x (-0.09, 0, -0.12) = (-0.12, 0, 0.09)
+  EXPECT_NEAR(f.lever.x, -0.12, 1e-15);
+  EXPECT_NEAR(f.lever.z, 0.09, 1e-15);
+}
+
+TEST(ContactLaw, BackwardProjectedTouchTimeOffThePlane) {
+  // Eq 13 in 3D: p = (0.003, 0, 0.0025), w = (-1, 0, 0): the same hand solution as in the plane
+  // with the offset along z instead of y.
+  const double L = std::hypot(0.003, 0.0025);
+  const double s = fluidbed::time_since_touch(0.003, 0.0, -1.0, 0.0, 0.004, L, 0.0025, 0.0);
+  EXPECT_NEAR(s, std::sqrt(0.004 * 0.004 - 0.0025 * 0.0025) - 0.003, 1e-15);
+}
