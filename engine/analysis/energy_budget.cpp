@@ -13,6 +13,11 @@ EnergyBudget energy_state(const DemSolver& dem, double gravity) {
     e.kinetic_rotation += 0.5 * p.w[i] * p.w[i] / p.inv_inertia[i];
     e.potential += p.mass[i] * gravity * p.y[i];
   }
+  if (p.has_depth())  // a thick slab: motion across it and spin about x and y
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      e.kinetic_translation += 0.5 * p.mass[i] * p.vz[i] * p.vz[i];
+      e.kinetic_rotation += 0.5 * (p.wx[i] * p.wx[i] + p.wy[i] * p.wy[i]) / p.inv_inertia[i];
+    }
   const SpringEnergy s = dem.spring_energy();
   e.spring_normal = s.normal;
   e.spring_tangential = s.tangential;

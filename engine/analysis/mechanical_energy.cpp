@@ -12,11 +12,15 @@ MechanicalEnergy mechanical_energy(const Particles& p, const std::vector<Wall>& 
   MechanicalEnergy e;
   const std::size_t n = p.size();
   if (n == 0) return e;
+  const bool depth = p.has_depth();  // a thick slab: z, its velocity and the spin about x, y
   double rmax = 0.0, x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
   for (std::size_t i = 0; i < n; ++i) {
     const double inertia = 1.0 / p.inv_inertia[i];
     e.kinetic += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]) +
                  0.5 * inertia * p.w[i] * p.w[i];
+    if (depth)
+      e.kinetic += 0.5 * p.mass[i] * p.vz[i] * p.vz[i] +
+                   0.5 * inertia * (p.wx[i] * p.wx[i] + p.wy[i] * p.wy[i]);
     e.potential += p.mass[i] * gravity * p.y[i];
     rmax = std::max(rmax, p.radius[i]);
     x0 = std::min(x0, p.x[i]);
@@ -61,7 +65,8 @@ MechanicalEnergy mechanical_energy(const Particles& p, const std::vector<Wall>& 
           if (j <= i) continue;
           const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
           const double R = p.radius[i] + p.radius[j];
-          const double d2 = dx * dx + dy * dy;
+          const double dz = depth ? p.z[j] - p.z[i] : 0.0;
+          const double d2 = dx * dx + dy * dy + dz * dz;
           if (d2 >= R * R) continue;
           const double delta = R - std::sqrt(d2);
           pairs += 0.5 * kn * delta * delta;
@@ -71,7 +76,7 @@ MechanicalEnergy mechanical_energy(const Particles& p, const std::vector<Wall>& 
   double wall = 0.0;
   for (std::size_t i = 0; i < n; ++i)
     for (const Wall& w : walls) {
-      const double d = w.nx * p.x[i] + w.ny * p.y[i] - w.offset;
+      const double d = w.nx * p.x[i] + w.ny * p.y[i] + (depth ? w.nz * p.z[i] : 0.0) - w.offset;
       if (d >= p.radius[i]) continue;
       const double delta = p.radius[i] - d;
       wall += 0.5 * kn * delta * delta;

@@ -125,6 +125,7 @@ void Coupler::freeze_range(Particles& p, std::size_t begin, std::size_t end) {
   // coefficient (pure arithmetic over arrays: vectorised), the forces.
   const double dx = grid_.dx(), dy = grid_.dy();
   const int nx = grid_.nx, ny = grid_.ny;
+  const bool depth = p.has_depth();
   for (std::size_t i = begin; i < end; ++i) {
     const int c = GasGrid::along(p.y[i], dy, ny) * nx + GasGrid::along(p.x[i], dx, nx);
     s_.cell[i] = c;
@@ -133,7 +134,9 @@ void Coupler::freeze_range(Particles& p, std::size_t begin, std::size_t end) {
     const double sx = cell_ux_[c] - p.vx[i], sy = cell_uy_[c] - p.vy[i];
     slip_x_[i] = sx;
     slip_y_[i] = sy;
-    slip_[i] = std::sqrt(sx * sx + sy * sy);
+    // A thick slab's particle also slips through the gas along z, which has no z velocity.
+    const double sz = depth ? -p.vz[i] : 0.0;
+    slip_[i] = std::sqrt(sx * sx + sy * sy + sz * sz);
     eps_at_[i] = s_.eps[c];
     ln_eps_at_[i] = ln_eps_[c];
   }
@@ -160,6 +163,10 @@ void Coupler::freeze_range(Particles& p, std::size_t begin, std::size_t end) {
     p.ext_fx[i] = s_.drag_x[i] + bx;
     p.ext_fy[i] = s_.drag_y[i] + by;
   }
+  // Along z the drag alone, beta (0 - v_z): the gas is one cell deep with no z velocity and no
+  // pressure gradient across the slab; its reaction goes to the front and back walls, not the gas.
+  if (depth)
+    for (std::size_t i = begin; i < end; ++i) p.ext_fz[i] = -(s_.beta[i] * p.vz[i]);
 }
 
 void Coupler::advance_drag(Particles& p, bool update, const std::vector<std::size_t>& split) {
@@ -193,6 +200,8 @@ void Coupler::advance_drag_range(Particles& p, bool update, std::size_t b, std::
     fx[i] = dx[i] + bx[i];
     fy[i] = dy[i] + by[i];
   }
+  if (p.has_depth())
+    for (std::size_t i = b; i < e; ++i) p.ext_fz[i] = -(beta[i] * p.vz[i]);
 }
 
 void Coupler::take_interaction_force(std::vector<double>& fx, std::vector<double>& fy,

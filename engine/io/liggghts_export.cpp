@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "dem/contact_law.hpp"
+#include "dem/walls.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/model_params.hpp"
 #include "sim/placement.hpp"
@@ -112,16 +113,24 @@ void write_data(std::ostream& out, const Settings& s, const Particles& p) {
   out << "0 " << num(box_top(s)) << " ylo yhi\n";
   out << "0 " << num(s.domain.thickness) << " zlo zhi\n\nAtoms\n\n";
   const std::string d = num(s.particles.diameter), rho = num(s.particles.density), zs = num(z);
+  const bool depth = p.has_depth();  // a thick slab: each sphere's own z, velocity and spin
   for (std::size_t i = 0; i < p.size(); ++i)
     out << i + 1 << " 1 " << d << ' ' << rho << ' ' << num(p.x[i]) << ' ' << num(p.y[i]) << ' '
-        << zs << '\n';
+        << (depth ? num(p.z[i]) : zs) << '\n';
   bool moving = false;
   for (std::size_t i = 0; i < p.size(); ++i)
-    moving = moving || p.vx[i] != 0.0 || p.vy[i] != 0.0 || p.w[i] != 0.0;
+    moving = moving || p.vx[i] != 0.0 || p.vy[i] != 0.0 || p.w[i] != 0.0 ||
+             (depth && (p.vz[i] != 0.0 || p.wx[i] != 0.0 || p.wy[i] != 0.0));
   if (!moving) return;
   out << "\nVelocities\n\n";  // id vx vy vz omegax omegay omegaz
-  for (std::size_t i = 0; i < p.size(); ++i)
-    out << i + 1 << ' ' << num(p.vx[i]) << ' ' << num(p.vy[i]) << " 0 0 0 " << num(p.w[i]) << '\n';
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    out << i + 1 << ' ' << num(p.vx[i]) << ' ' << num(p.vy[i]) << ' ';
+    if (depth)
+      out << num(p.vz[i]) << ' ' << num(p.wx[i]) << ' ' << num(p.wy[i]);
+    else
+      out << "0 0 0";
+    out << ' ' << num(p.w[i]) << '\n';
+  }
 }
 
 // fix property/global blocks: LIGGGHTS reads the law's numbers from these, for every pair of
@@ -307,11 +316,15 @@ std::vector<std::string> notes_for(const Settings& s, const LiggghtsExportOption
   n.push_back(
       "sliding caps the tangential force at mu times the whole normal force (spring and "
       "dashpot); fluidbed caps it at mu times the spring force");
-  n.push_back(o.front_back_walls
-                  ? "the front and back walls are wall/gran planes (fluidbed leaves them out: "
-                    "they never press on an in-plane sphere)"
-                  : "no front and back walls, as in fluidbed; the z force is held at zero "
-                    "instead, so the spheres stay on the mid-plane");
+  if (slab_has_depth(s.domain, s.particles.diameter))
+    n.push_back("a thick slab: the spheres move in 3D and the front and back walls are "
+                "wall/gran planes, as in fluidbed");
+  else
+    n.push_back(o.front_back_walls
+                    ? "the front and back walls are wall/gran planes (fluidbed leaves them out: "
+                      "they never press on an in-plane sphere)"
+                    : "no front and back walls, as in fluidbed; the z force is held at zero "
+                      "instead, so the spheres stay on the mid-plane");
   if (s.particles.placement == Placement::State)
     n.push_back("the start is the saved state " + s.particles.state_file +
                 " without its contact history: tangential springs start at zero");
@@ -332,10 +345,13 @@ LiggghtsCase write_liggghts_case(const Settings& s, const std::string& dir,
         "no gas; there is nothing to export");
   check_integrator(s, "");
   const Particles p = start_particles(s);
-  const std::vector<std::string> notes = notes_for(s, options);
+  // A thick slab's spheres move in z: the front and back walls are contacts there as here.
+  LiggghtsExportOptions o = options;
+  o.front_back_walls = o.front_back_walls || p.has_depth();
+  const std::vector<std::string> notes = notes_for(s, o);
   // Render the deck before touching the folder, so that a refusal writes nothing.
   std::ostringstream deck;
-  write_deck(deck, s, options, notes);
+  write_deck(deck, s, o, notes);
 
   namespace fs = std::filesystem;
   std::error_code ec;

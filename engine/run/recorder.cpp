@@ -101,10 +101,14 @@ void RunRecorder::write_row(const Simulation& sim) {
       ++fluid_samples_;
     }
   }
-  if (t > startup_ && bed_) {
+  {
     const Settings& s = sim.settings();
-    bed_height_sum_ += measure_packing(sim.dem().particles(), s.domain.width, s.domain.thickness).bed_height;
-    ++bed_height_samples_;
+    pending_.bed_height =
+        measure_packing(sim.dem().particles(), s.domain.width, s.domain.thickness).bed_height;
+    if (t > startup_ && bed_) {
+      bed_height_sum_ += pending_.bed_height;
+      ++bed_height_samples_;
+    }
   }
   if (bubbles_) {
     pending_.bubbles = bubbles_->bubbles_now();
@@ -229,7 +233,7 @@ PowerSpectrum RunRecorder::dp_spectrum() const {
 }
 
 namespace {
-constexpr char kRecorderTag[8] = {'F', 'L', 'B', 'R', 'E', 'C', '0', '3'};
+constexpr char kRecorderTag[8] = {'F', 'L', 'B', 'R', 'E', 'C', '0', '4'};
 static_assert(std::is_trivially_copyable_v<TimeseriesRow>);
 static_assert(std::is_trivially_copyable_v<EnergyBudget> &&
               std::is_trivially_copyable_v<EnergyLedger>);

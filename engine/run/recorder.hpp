@@ -38,6 +38,9 @@ struct TimeseriesRow {
   // the frames of the trailing BubbleRecorder::kRegimeWindow.
   int bubbles = 0;
   Regime regime = Regime::fixed;
+  // m: the bed's height at the row (analysis/packing_metrics.hpp: the mean over 1 cm columns
+  // of the highest centre in each).
+  double bed_height = 0.0;
 };
 
 class RunRecorder {

@@ -118,7 +118,7 @@ std::string timeseries_header(bool bubbles) {
   std::string h =
       "t,dp,max_overlap_ratio,max_wall_overlap_ratio,kinetic_energy,contacts,pair_contacts,"
       "wall_contacts,simple_iterations,mass_residual,max_cfl,fluid_force_y,e_kinetic,e_rotation,"
-      "e_potential,e_spring_n,e_spring_t,w_gas,e_dashpot,e_friction,e_residual";
+      "e_potential,e_spring_n,e_spring_t,w_gas,e_dashpot,e_friction,e_residual,bed_height";
   return h + (bubbles ? ",bubbles,regime\n" : "\n");
 }
 
@@ -130,9 +130,9 @@ std::string timeseries_line(const TimeseriesRow& row, bool bubbles) {
                 row.simple_iterations, row.mass_residual, row.max_cfl, row.fluid_force_y);
   std::string csv = line;
   const EnergyBudget& e = row.energy;
-  std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g",
+  std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g",
                 e.kinetic_translation, e.kinetic_rotation, e.potential, e.spring_normal,
-                e.spring_tangential, e.gas_work, e.dashpot, e.friction, e.residual);
+                e.spring_tangential, e.gas_work, e.dashpot, e.friction, e.residual, row.bed_height);
   csv += line;
   if (bubbles) {
     std::snprintf(line, sizeof line, ",%d,%s", row.bubbles, to_string(row.regime));

@@ -185,7 +185,7 @@ void visit_fields(DomainSettings& s, V&& v) {
   using namespace ranges;
   v("width", s.width, {"m", positive, "x extent of the bed (left wall at x = 0)"});
   v("height", s.height, {"m", positive, "y extent of the bed (bottom wall at y = 0)"});
-  v("thickness", s.thickness, {"m", positive, "z extent of the slab, at least one diameter"});
+  v("thickness", s.thickness, {"m", positive, "z extent of the slab, at least one diameter (thicker: particles move in 3D)"});
   v("top_wall", s.top_wall, {"", any, "a rigid wall at y = height (the paper's bed is open)"});
 }
 template <class V>

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "dem/contact_law.hpp"
+#include "dem/walls.hpp"
 
 namespace fluidbed {
 namespace {
@@ -151,6 +152,11 @@ std::string describe_check(const Settings& s, const SceneCheck& c) {
   line("restitution, pair", fmt("%.4g", f.restitution_pair));
   line("bed weight per area W/A",
        fmt("%.4g Pa", f.weight_per_area) + " (N m g / (width thickness))");
+  const double layers = s.domain.thickness / s.particles.diameter;
+  line("slab depth", fmt("%.3g d", layers) +
+                         (slab_has_depth(s.domain, s.particles.diameter)
+                              ? ": particles move in 3D, the front and back walls are contacts"
+                              : ": one layer, centres on the mid-plane (the paper's bed)"));
   if (f.gas) {
     line("jet velocity",
          fmt("%.4g m/s", f.jet_velocity) +

@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/random.hpp"
+#include "dem/walls.hpp"
 #include "scene/lattice.hpp"
 
 namespace fluidbed {
@@ -24,6 +25,10 @@ Particles place_particles(const Settings& s) {
   const std::size_t n = static_cast<std::size_t>(ps.count);
   p.resize(n);
   for (std::size_t i = 0; i < n; ++i) p.set_sphere(i, ps.diameter, ps.density);
+  // A thick slab: the particles move in three dimensions, from the slab's mid-plane unless the
+  // placement says otherwise.
+  const bool depth = slab_has_depth(s.domain, ps.diameter);
+  if (depth) p.add_depth(0.5 * s.domain.thickness);
   if (ps.placement == Placement::Single) {
     p.x[0] = ps.x;
     p.y[0] = ps.y;
@@ -65,6 +70,16 @@ Particles place_particles(const Settings& s) {
       const LatticeSite site = lattice.site(order[i]);
       p.x[i] = site.x;
       p.y[i] = site.y;
+    }
+    // In a thick slab each sphere's z is drawn uniformly across the slab (its lattice cell is a
+    // column through the depth: spheres of neighbouring cells cannot overlap at any z), from a
+    // stream of its own so that the cells chosen are those of the monolayer with the same seed.
+    // Spheres at random depths meet as they fall and settle into a packing in three dimensions;
+    // on a few fixed layers they would never touch across layers.
+    if (depth) {
+      SplitMix64 zrng(ps.seed ^ 0x5a17u);
+      const double r = 0.5 * ps.diameter, span = s.domain.thickness - ps.diameter;
+      for (std::size_t i = 0; i < n; ++i) p.z[i] = r + span * zrng.uniform();
     }
   } else {
     throw InputError("particles.placement \"" + option_string(ps.placement) +

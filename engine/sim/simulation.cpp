@@ -30,7 +30,8 @@ DemSolver make_dem(const Settings& s) {
   st.step = 0;
   // A bed packed without a lid may start a scene with one (domain.top_wall: walls are bottom,
   // left, right, then top): the top wall's history starts empty.
-  const int walls = static_cast<int>(slab_walls(s.domain).size());
+  const int walls =
+      static_cast<int>(slab_walls(s.domain, slab_has_depth(s.domain, s.particles.diameter)).size());
   if (st.walls.walls == walls - 1 && s.domain.top_wall) st.walls.add_walls(walls);
   Particles p = st.particles;
   DemSolver dem(dem_params_for(s), std::move(p));
@@ -57,6 +58,7 @@ Simulation::Simulation(const Settings& s)
     for (std::size_t i = 0; i < p.size(); ++i) {
       p.ax[i] += p.ext_fx[i] * p.inv_mass[i];
       p.ay[i] += p.ext_fy[i] * p.inv_mass[i];
+      if (p.has_depth()) p.az[i] += p.ext_fz[i] * p.inv_mass[i];
     }
   }
 }

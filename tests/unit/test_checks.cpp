@@ -93,13 +93,17 @@ TEST(SceneChecks, AStepBeyondTheMeasuredLimitIsRefused) {
 
 TEST(SceneChecks, CheckPrintsEveryShippedScenesFiguresAndExitsZero) {
   for (const char* name : {"drop.toml", "ideal.toml", "packing.toml", "teaching.toml", "wide.toml",
-                           "xu_yu_1997.toml"}) {
+                           "xu_yu_1997.toml", "van_wachem_2001.toml"}) {
     const CommandResult r = run_fluidbed("check " + scene(name), "check");
     EXPECT_EQ(r.status, 0) << name << "\n" << r.out << r.err;
     for (const char* figure :
          {"particle mass", "contact duration, wall", "contact duration, pair", "dt / t_c",
-          "restitution, wall", "restitution, pair", "bed weight per area"})
+          "restitution, wall", "restitution, pair", "bed weight per area", "slab depth"})
       EXPECT_NE(r.out.find(figure), std::string::npos) << name << ": " << figure << "\n" << r.out;
+    // Only the thick slab moves its particles in 3D.
+    EXPECT_EQ(r.out.find("particles move in 3D") != std::string::npos,
+              std::string(name) == "van_wachem_2001.toml")
+        << name << "\n" << r.out;
     if (std::string(name) != "drop.toml") {
       for (const char* figure : {"jet velocity", "U_mf, Wen-Yu", "gas cell / d", "gas CFL"})
         EXPECT_NE(r.out.find(figure), std::string::npos) << name << ": " << figure << "\n" << r.out;
