@@ -35,7 +35,7 @@ void add_output_options(CLI::App* cmd, fluidbed::app::OutputArgs& o) {
   cmd->add_option("--montage", o.montage, "write DIR/montage.png of these times: t1,t2,... (s)");
   cmd->add_option("--frame-interval", o.frame_interval, "simulated seconds between frames (0.04)");
   cmd->add_option("--frame-size", o.frame_size, "frame size WxH in pixels (1280x720)");
-  cmd->add_option("--colour", o.colour, "particle colour: speed, force, torque, overlap, height, fixed");
+  cmd->add_option("--colour", o.colour, "particle colour: speed, force, torque, overlap, height, depth, fixed");
   cmd->add_option("--colour-range", o.colour_range, "colour range MIN,MAX (the quantity's unit)");
   cmd->add_flag("--gas-arrows,!--no-gas-arrows", o.gas_arrows, "gas velocity arrows (on)");
   cmd->add_flag("--gas-arrow-colour", o.gas_arrow_colour, "colour gas arrows by speed");

@@ -8,7 +8,7 @@
 namespace fluidbed::render {
 
 std::vector<std::string> colour_by_names() {
-  return {"speed", "force", "torque", "overlap", "height", "fixed"};
+  return {"speed", "force", "torque", "overlap", "height", "depth", "fixed"};
 }
 
 ColourBy parse_colour_by(const std::string& name) {
@@ -37,6 +37,9 @@ ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double
                "initial height (m)"};
       break;
     }
+    case ColourBy::depth:
+      scale = {0.0, s.thickness > 0.0 ? s.thickness : 1e-3, 0, "depth from the front (m)"};
+      break;
     case ColourBy::fixed: scale = {0.0, 1.0, 0, ""}; break;
   }
   if (range_min < range_max) {
@@ -53,9 +56,18 @@ double particle_value(ColourBy c, const Snapshot& s, std::size_t i) {
     case ColourBy::torque: return std::abs(s.torque[i]);
     case ColourBy::overlap: return i < s.overlap.size() ? s.overlap[i] : 0.0;
     case ColourBy::height: return i < s.initial_y.size() ? s.initial_y[i] : s.y[i];
+    case ColourBy::depth: return i < s.z.size() ? s.z[i] : 0.5 * s.thickness;
     case ColourBy::fixed: return 0.0;
   }
   return 0.0;
+}
+
+double depth_shade(const Snapshot& s, std::size_t i) {
+  if (i >= s.z.size()) return 1.0;
+  const double span = s.thickness - 2.0 * s.radius[i];
+  if (!(span > 0.0)) return 1.0;  // no room to be behind another sphere
+  const double t = std::clamp((s.z[i] - s.radius[i]) / span, 0.0, 1.0);
+  return 1.0 - (1.0 - kBackShade) * t;
 }
 
 double scale_position(const ColourScale& scale, double value) {

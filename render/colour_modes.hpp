@@ -15,6 +15,7 @@ enum class ColourBy {
   torque,   // |T| (N m) - Fig. 14d
   overlap,  // largest overlap ratio of the particle's contacts (-) - Fig. 15's measure
   height,   // initial height, in bands, to watch mixing (m)
+  depth,    // z across the slab from the front wall (m): a thick bed's layers
   fixed,    // one colour
 };
 
@@ -30,13 +31,21 @@ struct ColourScale {
 };
 
 // The default range for a quantity: speed 0-1.5 m/s, force 0-0.7 N and torque 0-3e-4 N m (the
-// legends of the paper's Fig. 14), overlap 0-1 %, height from 0 to the highest initial centre.
+// legends of the paper's Fig. 14), overlap 0-1 %, height from 0 to the highest initial centre,
+// depth from the front wall (0) to the back wall (the slab's thickness).
 // `min < max` in `range` overrides the default.
 ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double range_max,
                          int height_bands);
 
-// The particle's value of the quantity (unit of the quantity).
+// The particle's value of the quantity (unit of the quantity). A monolayer (no z) has every
+// centre on the mid-plane, so its depth is half the thickness: one colour, the scale's middle.
 double particle_value(ColourBy c, const Snapshot& s, std::size_t i);
+
+// How bright particle i is drawn for its depth in a thick bed: 1 for a sphere touching the front
+// wall (z = r), falling linearly to kBackShade touching the back wall (z = thickness - r), so the
+// front layer stands out against those behind it. 1 in a monolayer (no z): the paper's pictures.
+inline constexpr double kBackShade = 0.6;
+double depth_shade(const Snapshot& s, std::size_t i);
 
 // Where `value` falls on the scale, in [0, 1] (banded scales give the band's centre).
 double scale_position(const ColourScale& scale, double value);

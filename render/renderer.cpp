@@ -23,14 +23,30 @@ void Renderer::Impl::draw_bed(const Snapshot& s, const BedView& bed, const Frame
       }
   }
 
-  // Particles.
-  for (std::size_t i = 0; i < s.particles(); ++i) {
-    const Rgb c = rs.colour_by == ColourBy::fixed
-                      ? rs.fixed_colour
-                      : colour_at(ColourMap::viridis,
-                                  scale_position(scale, particle_value(rs.colour_by, s, i)));
+  // Particles. A thick bed is seen through the front wall (z = 0): its spheres go back to front,
+  // so that the nearer one covers the farther where they overlap on the picture, and each is
+  // darkened for its depth (depth_shade). A monolayer keeps its order and colours.
+  const bool depth = !s.z.empty() && s.z.size() == s.particles();
+  const auto add_disc = [&](std::size_t i) {
+    Rgb c = rs.colour_by == ColourBy::fixed
+                ? rs.fixed_colour
+                : colour_at(ColourMap::viridis,
+                            scale_position(scale, particle_value(rs.colour_by, s, i)));
+    if (depth) {
+      const float shade = f(depth_shade(s, i));
+      c = {c.r * shade, c.g * shade, c.b * shade};
+    }
     discs.push_back({bed.px(s.x[i]), bed.py(s.y[i]), std::max(0.7f, f(s.radius[i] * bed.scale)),
                      c.r, c.g, c.b});
+  };
+  if (depth) {
+    back_to_front.resize(s.particles());
+    std::iota(back_to_front.begin(), back_to_front.end(), std::size_t{0});
+    std::stable_sort(back_to_front.begin(), back_to_front.end(),
+                     [&s](std::size_t a, std::size_t b) { return s.z[a] > s.z[b]; });
+    for (std::size_t i : back_to_front) add_disc(i);
+  } else {
+    for (std::size_t i = 0; i < s.particles(); ++i) add_disc(i);
   }
 
   // Bubble and jet-cavity outlines (the fine cells' edges the snapshot carries), over the

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 
 #include "core/errors.hpp"
@@ -144,6 +145,7 @@ struct Renderer::Impl {
   std::vector<Disc> discs;
   std::vector<Arrow> arrow_list;
   std::map<int, std::vector<TextVertex>> text_by_size;
+  std::vector<std::size_t> back_to_front;  // a thick bed's particle order (kept for its capacity)
 
   Impl(GlContext& ctx, const std::string& font_path)
       : context(ctx),

@@ -15,7 +15,7 @@ struct OutputArgs {
   std::string montage;                  // "0.2,0.4,0.6" (s); empty: none
   double frame_interval = 0.04;         // s of simulated time (25 frames per simulated second)
   std::string frame_size = "1280x720";  // px
-  std::string colour = "speed";         // speed, force, torque, overlap, height, fixed
+  std::string colour = "speed";         // speed, force, torque, overlap, height, depth, fixed
   std::string colour_range;             // "MIN,MAX" in the quantity's unit; empty: its default
   bool gas_arrows = true, gas_arrow_colour = false, particle_arrows = false;
   bool porosity_background = false, dark = false;

@@ -84,7 +84,10 @@ void Viewer::draw_particle_info(std::size_t i, bool tooltip) {
   const Snapshot& s = *snap_;
   const render::ParticleContacts c = render::contacts_of(s, i);
   ImGui::Text("particle %zu%s", i, tooltip ? "   (click: track)" : "");
-  ImGui::Text("position  %.4f, %.4f m", s.x[i], s.y[i]);
+  if (i < s.z.size())
+    ImGui::Text("position  %.4f, %.4f m, %.4f m behind the front", s.x[i], s.y[i], s.z[i]);
+  else
+    ImGui::Text("position  %.4f, %.4f m", s.x[i], s.y[i]);
   ImGui::Text("velocity  %.3f, %.3f m/s (|v| %.3f)", s.vx[i], s.vy[i],
               std::hypot(s.vx[i], s.vy[i]));
   ImGui::Text("force     %.3g, %.3g N (|F| %.3g)", s.fx[i], s.fy[i], std::hypot(s.fx[i], s.fy[i]));
@@ -305,7 +308,8 @@ void Viewer::draw_look_section() {
                                                     {ColourBy::force, "force"},
                                                     {ColourBy::torque, "torque"},
                                                     {ColourBy::overlap, "overlap"},
-                                                    {ColourBy::height, "mixing"}};
+                                                    {ColourBy::height, "mixing"},
+                                                    {ColourBy::depth, "depth"}};
   for (std::size_t k = 0; k < std::size(modes); ++k) {
     if (k > 0 && k != 3) ImGui::SameLine();
     if (ImGui::RadioButton(modes[k].second, look_.colour_by == modes[k].first)) {
@@ -316,6 +320,8 @@ void Viewer::draw_look_section() {
   if (snap_)
     colour_bar(render::colour_scale(look_.colour_by, *snap_, look_.range_min, look_.range_max,
                                     look_.height_bands));
+  if (snap_ && look_.colour_by == ColourBy::depth && snap_->z.empty())
+    ImGui::TextDisabled("a monolayer: every centre on the mid-plane");
   ImGui::Checkbox("gas arrows", &look_.gas_arrows);
   ImGui::SameLine();
   float gas_ref = static_cast<float>(look_.gas_arrow_reference);

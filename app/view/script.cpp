@@ -161,10 +161,11 @@ ScriptLine parse_line(Reader& r, int line_number) {
     if (l.number < 0.0) r.fail("wait needs seconds >= 0");
   } else if (cmd == "colour" || cmd == "color") {
     l.kind = Kind::colour;
-    l.text = r.word("a colour mode (speed, force, torque, overlap, mixing)");
+    l.text = r.word("a colour mode (speed, force, torque, overlap, mixing, depth)");
     if (l.text != "speed" && l.text != "force" && l.text != "torque" && l.text != "overlap" &&
-        l.text != "mixing")
-      r.fail("unknown colour mode '" + l.text + "' (known: speed, force, torque, overlap, mixing)");
+        l.text != "mixing" && l.text != "depth")
+      r.fail("unknown colour mode '" + l.text +
+             "' (known: speed, force, torque, overlap, mixing, depth)");
   } else if (cmd == "track") {
     l.kind = Kind::track;
     const std::string w = r.word("a particle id or off");

@@ -340,11 +340,16 @@ void Viewer::toggle_run() {
 
 void Viewer::cycle_colour() {
   using render::ColourBy;
-  static constexpr ColourBy order[] = {ColourBy::speed, ColourBy::force, ColourBy::torque,
-                                       ColourBy::overlap, ColourBy::height};
+  static constexpr ColourBy order[] = {ColourBy::speed,   ColourBy::force,  ColourBy::torque,
+                                       ColourBy::overlap, ColourBy::height, ColourBy::depth};
+  // A monolayer's depth is one colour (every centre on the mid-plane): the key skips it there.
+  const bool thick = snap_ && !snap_->z.empty();
   std::size_t k = 0;
   while (k < std::size(order) && order[k] != look_.colour_by) ++k;
-  look_.colour_by = order[(k + 1) % std::size(order)];
+  do {
+    k = (k + 1) % std::size(order);
+  } while (order[k] == ColourBy::depth && !thick);
+  look_.colour_by = order[k];
   look_.range_min = look_.range_max = 0.0;  // the new quantity's own range
 }
 

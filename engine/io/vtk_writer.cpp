@@ -119,7 +119,8 @@ void write_particles_vtp(const std::string& path, const Snapshot& s) {
   data_array<std::int32_t>(o, "Int32", "id", 1, ids, in);
   o << "      </PointData>\n"
     << "      <Points>\n";
-  floats(o, "", 3, interleave(n, s.x, s.y, mid), in);
+  // A monolayer's centres are on the slab's mid-plane; a thick bed's where its z puts them.
+  floats(o, "", 3, interleave(n, s.x, s.y, s.z.size() == n ? s.z : mid), in);
   o << "      </Points>\n"
     << "      <Verts>\n";
   data_array<std::int32_t>(o, "Int32", "connectivity", 1, ids, in);

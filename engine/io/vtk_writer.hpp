@@ -1,7 +1,8 @@
 #pragma once
 // ParaView-readable files of snapshots (VTK XML, no GL, no VTK library): the particles as
-// PolyData (.vtp: points at the centres with velocity, force, torque, spin, overlap, radius,
-// initial height and id), the gas cells as ImageData (.vti: velocity, porosity, pressure per
+// PolyData (.vtp: points at the centres, z on the slab's mid-plane in a monolayer and the
+// snapshot's z in a thick bed, with velocity, force, torque, spin, overlap, radius, initial
+// height and id), the gas cells as ImageData (.vti: velocity, porosity, pressure per
 // cell), and one .pvd collection per kind that ParaView opens as a time series. Arrays are
 // inline base64 binary (a UInt32 byte count, then little-endian values), Float32 except ids.
 #include <string>

@@ -123,6 +123,8 @@ INSTANTIATE_TEST_SUITE_P(
         ModeCase{ColourBy::overlap, {0.04, 0.05, 0.01, 0, 0, 0, 0, 0, 0.0075}, 0.75},
         // Height 0.03 of 0.08 m in 8 bands: band 3, drawn at its centre 3.5 / 8.
         ModeCase{ColourBy::height, {0.04, 0.05, 0.01, 0, 0, 0, 0, 0, 0, 0.03}, 3.5 / 8.0},
+        // A monolayer has no z: every centre on the mid-plane, the middle of the depth scale.
+        ModeCase{ColourBy::depth, {0.04, 0.05, 0.01}, 0.5},
         ModeCase{ColourBy::fixed, {0.04, 0.05, 0.01}, 0.0}),
     [](const auto& param_info) { return to_string(param_info.param.mode); });
 
@@ -334,6 +336,70 @@ TEST_F(Render, MontagePutsEachSnapshotInItsPanel) {
     // Where the other panels have their particle, this one is empty.
     EXPECT_TRUE(is_background(at(img, bed.px(0.025), bed.py(0.03 + 0.05 * ((k + 1) % 3)))));
   }
+}
+
+// A thick bed seen through the front wall. Two spheres overlap on the picture: the front one
+// (z = r, full brightness, the colour map's low end) covers the back one (z = thickness - r, the
+// high end at 60 %) whichever comes first in the arrays; a third, alone at the back, shows the
+// depth shade at its centre.
+TEST_F(Render, ThickBedShowsTheFrontSphereWhereSpheresOverlap) {
+  const ParticleState front{0.04, 0.05, 0.01};
+  const ParticleState back{0.047, 0.05, 0.01, 1.5, 0.0};  // covers the front one's centre
+  const ParticleState alone{0.08, 0.05, 0.01, 1.5, 0.0};
+  const Rgb low = colour_at(ColourMap::viridis, 0.0), high = colour_at(ColourMap::viridis, 1.0);
+  const Rgb dim{0.6f * high.r, 0.6f * high.g, 0.6f * high.b};
+  for (const bool front_first : {true, false}) {
+    Snapshot s = empty_box();
+    s.thickness = 0.04;
+    const auto add = [&s](const ParticleState& p, double z) {
+      add_particle(s, p);
+      s.z.push_back(z);
+    };
+    if (front_first) add(front, 0.01);
+    add(back, 0.03);
+    if (!front_first) add(front, 0.01);
+    add(alone, 0.03);
+    const Image img = draw(s);
+    const BedView bed = frame_layout(s, kW, kH).beds.front();
+    ASSERT_GT(0.007 * bed.scale, 10.0);
+    EXPECT_TRUE(near(at(img, bed.px(front.x), bed.py(front.y)), to8(low), 2)) << front_first;
+    EXPECT_TRUE(near(at(img, bed.px(alone.x), bed.py(alone.y)), to8(dim), 2)) << front_first;
+    // The back sphere shows beyond the front one's rim, no brighter than its dimmed centre.
+    const Rgb8 behind = at(img, bed.px(0.0555), bed.py(0.05));
+    EXPECT_TRUE(is_ink(behind));
+    EXPECT_LE(behind.g, to8(dim).g + 1);
+    EXPECT_GT(behind.g, to8(low).g + 30);
+  }
+}
+
+// The depth mode spans the slab: the front wall (z = 0) is the colour map's low end, the back
+// wall (z = thickness) its high end (drawn at the back's 60 % shade).
+TEST_F(Render, DepthModeSpansTheSlabFromFrontToBack) {
+  Snapshot s = empty_box();
+  s.thickness = 0.04;
+  add_particle(s, {0.03, 0.05, 0.01});
+  s.z.push_back(0.0);
+  add_particle(s, {0.07, 0.05, 0.01});
+  s.z.push_back(0.04);
+  RenderSettings rs = plain();
+  rs.colour_by = ColourBy::depth;
+  const ColourScale scale = colour_scale(ColourBy::depth, s, 0.0, 0.0, 8);
+  EXPECT_EQ(scale.bands, 0);
+  EXPECT_DOUBLE_EQ(scale_position(scale, particle_value(ColourBy::depth, s, 0)), 0.0);
+  EXPECT_DOUBLE_EQ(scale_position(scale, particle_value(ColourBy::depth, s, 1)), 1.0);
+  EXPECT_DOUBLE_EQ(depth_shade(s, 0), 1.0);
+  EXPECT_DOUBLE_EQ(depth_shade(s, 1), kBackShade);
+  const Image img = draw(s, rs);
+  const BedView bed = frame_layout(s, kW, kH).beds.front();
+  const Rgb high = colour_at(ColourMap::viridis, 1.0);
+  const auto back = static_cast<float>(kBackShade);
+  EXPECT_TRUE(near(at(img, bed.px(0.03), bed.py(0.05)), to8(colour_at(ColourMap::viridis, 0.0)), 2));
+  EXPECT_TRUE(near(at(img, bed.px(0.07), bed.py(0.05)),
+                   to8({back * high.r, back * high.g, back * high.b}), 2));
+  // Half-way across the slab: the middle of both the colour map and the shade.
+  s.z[1] = 0.02;
+  EXPECT_DOUBLE_EQ(scale_position(scale, particle_value(ColourBy::depth, s, 1)), 0.5);
+  EXPECT_DOUBLE_EQ(depth_shade(s, 1), 0.5 * (1.0 + kBackShade));
 }
 
 TEST(RenderBackends, UnknownNameListsTheKnownOnes) {

@@ -16,6 +16,8 @@
 #include <set>
 
 #include "../test_support.hpp"
+#include "io/vtk_writer.hpp"
+#include "render_support.hpp"
 
 using namespace fluidbed::testing;
 namespace fs = std::filesystem;
@@ -170,6 +172,27 @@ std::vector<std::pair<double, std::string>> read_collection(const fs::path& p) {
 }
 
 }  // namespace
+
+// The particles' points: a thick bed's at the snapshot's z, a monolayer's on the mid-plane.
+TEST(VtkParticles, PointsAreAtTheSnapshotsDepth) {
+  const fs::path dir = temp_dir("vtk-depth");
+  fluidbed::Snapshot s = empty_box();
+  s.thickness = 0.02;
+  add_particle(s, {0.01, 0.02, 0.002});
+  add_particle(s, {0.03, 0.04, 0.002});
+  s.z = {0.0035, 0.0162};
+  fluidbed::write_particles_vtp((dir / "thick.vtp").string(), s);
+  const auto thick = read_arrays(dir / "thick.vtp").at("Points").values;
+  ASSERT_EQ(thick.size(), 6u);
+  const double want[] = {0.01, 0.02, 0.0035, 0.03, 0.04, 0.0162};
+  for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(thick[k], want[k], 1e-8) << k;
+  s.z.clear();
+  fluidbed::write_particles_vtp((dir / "monolayer.vtp").string(), s);
+  const auto mono = read_arrays(dir / "monolayer.vtp").at("Points").values;
+  ASSERT_EQ(mono.size(), 6u);
+  EXPECT_NEAR(mono[2], 0.01, 1e-8);
+  EXPECT_NEAR(mono[5], 0.01, 1e-8);
+}
 
 TEST_F(RunOutputs, FramesHaveTheRightCountAndSize) {
   ASSERT_EQ(with_.status, 0) << with_.err;

@@ -83,6 +83,61 @@ TEST(ViewPicking, FindsTheParticleDrawnUnderAPixel) {
   EXPECT_NEAR(y, 0.03, 1e-5);
 }
 
+// A thick bed: where spheres cover each other on the picture, the front-most (smallest z) is
+// picked, though another's centre is nearer the pointer, whichever order the arrays have.
+TEST(ViewPicking, ThickBedPicksTheFrontMostSphere) {
+  for (const bool front_first : {true, false}) {
+    Snapshot s = empty_box(0.1, 0.2);
+    s.thickness = 0.02;
+    const double xs[] = {0.0200, 0.0225, 0.0250}, zs[] = {0.004, 0.010, 0.016};  // front to back
+    for (int k = 0; k < 3; ++k) {
+      const int j = front_first ? k : 2 - k;
+      add_particle(s, {xs[j], 0.03, 0.002});
+      s.z.push_back(zs[j]);
+    }
+    const std::size_t front = front_first ? 0 : 2, middle = 1, back = 2 - front;
+    const render::FrameLayout l = render::frame_layout(s, 800, 600, 0.4);
+    double fx = 0, fy = 0;
+    // Covered by the front and middle ones, nearer the middle one's centre.
+    render::world_to_frame(l, 0.0215, 0.03, fx, fy);
+    EXPECT_EQ(render::pick_particle(s, l, fx, fy), std::optional<std::size_t>(front)) << front_first;
+    // Beyond the front one's rim, covered by the middle and back ones, nearer the back one's centre.
+    render::world_to_frame(l, 0.0240, 0.03, fx, fy);
+    EXPECT_EQ(render::pick_particle(s, l, fx, fy), std::optional<std::size_t>(middle)) << front_first;
+    // The close-up picks the same.
+    const render::BedView& z = l.beds[1];
+    EXPECT_EQ(render::pick_particle(s, l, z.px(0.0215), z.py(0.03)), std::optional<std::size_t>(front));
+    // Without depth (a monolayer) the nearest centre is picked, as before.
+    s.z.clear();
+    EXPECT_EQ(render::pick_particle(s, l, fx, fy), std::optional<std::size_t>(back)) << front_first;
+  }
+}
+
+// In a thick bed spheres that overlap on the picture but lie apart in depth do not touch, and
+// the front and back walls count.
+TEST(ViewPicking, ThickBedContactsAreInThreeDimensions) {
+  Snapshot s = empty_box(0.1, 0.2);
+  s.thickness = 0.02;
+  add_particle(s, {0.05, 0.05, 0.002});
+  s.z.push_back(0.0019);  // touches the front wall
+  add_particle(s, {0.0538, 0.05, 0.002});
+  s.z.push_back(0.0019);  // 3.8 mm away at the same depth: overlaps the first
+  add_particle(s, {0.0519, 0.05, 0.002});
+  s.z.push_back(0.0080);  // on the picture over both, 6.1 mm behind: touches neither
+  const render::ParticleContacts c = render::contacts_of(s, 0);
+  EXPECT_EQ(c.walls, 1);
+  ASSERT_EQ(c.particles.size(), 1u);
+  EXPECT_EQ(c.particles[0], 1u);
+  EXPECT_NEAR(c.max_overlap, 1.0 - 0.0038 / 0.004, 1e-9);
+  EXPECT_EQ(render::contacts_of(s, 2).count(), 0u);
+  s.z[2] = 0.0181;  // touches the back wall
+  EXPECT_EQ(render::contacts_of(s, 2).walls, 1);
+  // The same spheres in a monolayer: all three overlap on the mid-plane, no front or back wall.
+  s.z.clear();
+  EXPECT_EQ(render::contacts_of(s, 2).particles.size(), 2u);
+  EXPECT_EQ(render::contacts_of(s, 0).walls, 0);
+}
+
 TEST(ViewPicking, ContactsAreOverlapsAndWalls) {
   Snapshot s = empty_box(0.1, 0.2);
   add_particle(s, {0.0019, 0.0019, 0.002});  // touches the left and bottom walls

@@ -527,6 +527,8 @@ TEST(ViewScript, NamesTheLineAndTheProblem) {
   EXPECT_NE(message("at x quit").find("'at'"), std::string::npos);
   EXPECT_NE(message("ideal maybe").find("on or off"), std::string::npos);
   EXPECT_NE(message("colour rainbow").find("unknown colour mode 'rainbow'"), std::string::npos);
+  EXPECT_NE(message("colour rainbow").find("depth"), std::string::npos);  // a thick bed's mode
+  EXPECT_EQ(app::parse_view_script("colour depth\n", "d.txt").lines.at(0).text, "depth");
   EXPECT_NE(message("quit now").find("unexpected 'now'"), std::string::npos);
   EXPECT_NE(message("step 0").find("whole count"), std::string::npos);
   EXPECT_THROW(app::load_view_script("/nonexistent/script.txt"), InputError);
