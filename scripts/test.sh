@@ -4,7 +4,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
-ctest --test-dir build --output-on-failure -j "$(nproc)"
+# The extended runs (a quarter of an hour or more each: ctest --test-dir build -L extended) are
+# left out here.
+ctest --test-dir build --output-on-failure -j "$(nproc)" -LE extended
 BUILD_DIR=build-sanitize BUILD_TYPE=RelWithDebInfo scripts/build.sh -DFLUIDBED_SANITIZE=ON -DFLUIDBED_BENCHMARKS=OFF \
   -DFLUIDBED_LONG_TESTS=OFF
 # The sanitizer run starts from the Release run's packed beds: the cache key is the scene, not
