@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "dem/particles.hpp"
+#include "dem/walls.hpp"
 #include "run/packed_bed.hpp"
 #include "sim/placement.hpp"
 
@@ -542,6 +543,10 @@ OpenfoamCase write_openfoam_case(const Settings& s, const std::string& dir,
         "it --to liggghts, or add a [gas] section)");
   if (s.particles.frozen)
     throw InputError("particles.frozen: DPMFoam's particles cannot be held in place");
+  if (slab_has_depth(s.domain, s.particles.diameter))
+    throw InputError("domain.thickness: the DPMFoam case keeps its spheres on the mid-plane "
+                     "(empty front and back patches), so a thick slab, whose particles move in "
+                     "3D, is not exported (export it --to liggghts)");
   if (s.inlet.kind == InletKind::Jet && s.inlet.jets != 1)
     throw InputError("inlet.jets = " + std::to_string(s.inlet.jets) +
                      ": the DPMFoam case has one central jet slot (export a bed with jets = 1)");

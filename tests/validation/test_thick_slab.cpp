@@ -10,7 +10,10 @@
 #include <sstream>
 
 #include "../test_support.hpp"
+#include "core/errors.hpp"
 #include "dem/dem_solver.hpp"
+#include "io/openfoam_export.hpp"
+#include "scene/scene_loader.hpp"
 #include "sim/model_params.hpp"
 #include "sim/placement.hpp"
 
@@ -273,4 +276,18 @@ TEST(ThickSlab, StateFileRestartsTheSameBits) {
     resumed.step();
   }
   EXPECT_EQ(resumed.state_hash(), straight.state_hash());
+}
+
+TEST(ThickSlab, OpenfoamExportRefusesAThickSlabByName) {
+  // DPMFoam's case keeps the spheres on the mid-plane: a thick slab is refused in one line that
+  // names the setting, before anything is written.
+  const Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/van_wachem_2001.toml");
+  const auto dir = temp_dir("thick-openfoam");
+  try {
+    write_openfoam_case(s, (dir / "case").string(), {});
+    FAIL() << "a thick slab was exported";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("domain.thickness"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "case"));
 }
