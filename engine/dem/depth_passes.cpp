@@ -188,7 +188,7 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
   }
   // Walls: the planar ones for the particles that can reach one before the next neighbour-list
   // build, then the front and back walls for every particle (a thick slab is a few diameters
-  // deep, and the list's staleness test follows x and y only).
+  // deep: most of its particles are within reach of one of them).
   WallHistory& wh = state_.walls;
   const int nw = static_cast<int>(walls_.size());
   double max_wall_ratio = 0.0;

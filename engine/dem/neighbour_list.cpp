@@ -35,11 +35,22 @@ void NeighbourList::displacement(const Particles& p, std::size_t begin, std::siz
     const double* xr = x_ref_.data();
     const double* yr = y_ref_.data();
     // No early exit and no branch: a loop that vectorises is faster over a few thousand.
-    for (std::size_t k = begin; k < end; ++k) {
-      const double dx = x[k] - xr[k], dy = y[k] - yr[k];
-      const double d2 = dx * dx + dy * dy;
-      m2 = std::max(m2, std::min(m1, d2));
-      m1 = std::max(m1, d2);
+    if (!depth_) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const double dx = x[k] - xr[k], dy = y[k] - yr[k];
+        const double d2 = dx * dx + dy * dy;
+        m2 = std::max(m2, std::min(m1, d2));
+        m1 = std::max(m1, d2);
+      }
+    } else {  // a thick slab's candidates are within reach in 3D: z moves count too
+      const double* z = p.z.data();
+      const double* zr = z_ref_.data();
+      for (std::size_t k = begin; k < end; ++k) {
+        const double dx = x[k] - xr[k], dy = y[k] - yr[k], dz = z[k] - zr[k];
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        m2 = std::max(m2, std::min(m1, d2));
+        m1 = std::max(m1, d2);
+      }
     }
   }
   moved2[0] = m1;
@@ -84,11 +95,13 @@ void NeighbourList::export_history(PairContacts& out) const {
 // candidate is written, the count advances only for the ones kept): whether a neighbour is within
 // reach follows no pattern a branch predictor could learn. Writes out's arrays from 0 and
 // first_begin[a] relative to them.
+template <bool Depth>
 void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin,
                                std::size_t end, Found& out, std::vector<std::int32_t>& first_begin) {
   const PairSlots& old = set_[cur_];
   const double* x = p.x.data();
   const double* y = p.y.data();
+  const double* z = p.z.data();  // a thick slab's (empty in a monolayer)
   const double* r = p.radius.data();
   const std::int32_t* ids = grid_.ids();
   const double* xs = grid_.xs();
@@ -98,6 +111,7 @@ void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin
   std::size_t m = 0;
   for (std::size_t a = begin; a < end; ++a) {
     const double xa = x[a], ya = y[a], ra = r[a] + skin_;
+    const double za = Depth ? z[a] : 0.0;
     const auto ia = static_cast<std::int32_t>(a);
     int rb[3], re[3];
     const int runs = grid_.near_runs(a, rb, re);
@@ -107,8 +121,11 @@ void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin
         const double dx = xs[k] - xa, dy = ys[k] - ya;
         const double reach = ra + rs[k];
         const std::int32_t b = ids[k];
+        // In a thick slab the reach is in 3D: the spheres at other depths of the same column
+        // are no candidates.
+        const double dz = Depth ? z[b] - za : 0.0;
         nb[count] = b;
-        count += (b > ia) & (dx * dx + dy * dy < reach * reach);
+        count += (b > ia) & (dx * dx + dy * dy + dz * dz < reach * reach);
       }
     for (int q = 1; q < count; ++q) {  // insertion sort: a handful
       const std::int32_t v = nb[q];
@@ -170,7 +187,11 @@ void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, s
     std::swap(a.touching, b.touching);
   };
   if (t == 0) lend(f, out);
-  find_pairs(p, carry, begin, end, f, out.first_begin);
+  if (depth_) {
+    find_pairs<true>(p, carry, begin, end, f, out.first_begin);
+  } else {
+    find_pairs<false>(p, carry, begin, end, f, out.first_begin);
+  }
   if (t == 0) lend(f, out);
 #pragma omp barrier
 #pragma omp single
@@ -193,6 +214,7 @@ void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, s
     contact_scratch.resize(m, depth_);
     x_ref_.resize(n);
     y_ref_.resize(n);
+    if (depth_) z_ref_.resize(n);
     cur_ = next;
     built_ = true;
     built_once_ = true;
@@ -215,6 +237,7 @@ void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, s
   }
   std::copy(p.x.begin() + begin, p.x.begin() + end, x_ref_.begin() + begin);
   std::copy(p.y.begin() + begin, p.y.begin() + end, y_ref_.begin() + begin);
+  if (depth_) std::copy(p.z.begin() + begin, p.z.begin() + end, z_ref_.begin() + begin);
   // The whole list in place before any thread reads another's part (a thread's last start,
   // first_begin[end], is the next thread's first, shifted by it above).
 #pragma omp barrier

@@ -53,9 +53,9 @@ struct ContactScratch {
 class NeighbourList {
  public:
   // dmax: largest diameter (m); skin (m) >= 0; threads: the most that will call build().
-  // depth: the particles move in three dimensions (a thick slab). Candidates are still found by
-  // their x-y distance, a superset of the pairs within reach in 3D; since two spheres touch only
-  // when their x-y distance is below R_i + R_j, the x-y displacement alone says when it is stale.
+  // depth: the particles move in three dimensions (a thick slab): the candidates are the pairs
+  // within reach in 3D (found in the x-y cells, which hold every depth), and the displacements
+  // that make the list stale count z.
   void configure(double width, double height, double dmax, double skin, std::size_t particles,
                  int threads = 1, bool depth = false);
 
@@ -103,6 +103,7 @@ class NeighbourList {
     std::vector<std::int32_t> near;   // scratch: one particle's partners
     std::size_t count = 0;
   };
+  template <bool Depth>
   void find_pairs(const Particles& p, bool carry, std::size_t begin, std::size_t end, Found& out,
                   std::vector<std::int32_t>& first_begin);
   void merge_seed();
@@ -110,7 +111,7 @@ class NeighbourList {
   CellGrid grid_;
   double skin_ = 0.0;
   bool depth_ = false;
-  std::vector<double> x_ref_, y_ref_;
+  std::vector<double> x_ref_, y_ref_, z_ref_;
   bool built_ = false;
   bool built_once_ = false;  // the slot set holds a list (its history)
   bool seeded_ = false;
