@@ -10,43 +10,10 @@
 #include "core/errors.hpp"
 #include "core/hash.hpp"
 #include "core/threads.hpp"
+#include "dem/block_ledger.hpp"
 #include "dem/pair_kernel.hpp"
 
 namespace fluidbed {
-
-namespace {
-
-// Adds a sequence of amounts, which comes in particle order, to the ledgers of the particles'
-// blocks: summed locally, stored when the block changes (and at the end).
-class BlockLedger {
- public:
-  explicit BlockLedger(EnergyLedger* blocks) : blocks_(blocks) {}
-  BlockLedger(const BlockLedger&) = delete;
-  BlockLedger& operator=(const BlockLedger&) = delete;
-  ~BlockLedger() { flush(); }
-  void add(std::size_t particle, double gas_work, const ContactLoss& loss) {
-    const std::size_t b = particle / kParticleBlock;
-    if (b != block_) {
-      flush();
-      block_ = b;
-    }
-    sum_.gas_work += gas_work;
-    sum_.dashpot += loss.dashpot;
-    sum_.friction += loss.friction;
-  }
-
- private:
-  void flush() {
-    if (block_ != kNone) blocks_[block_] += sum_;
-    sum_ = EnergyLedger{};
-  }
-  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
-  EnergyLedger* blocks_;
-  std::size_t block_ = kNone;
-  EnergyLedger sum_;
-};
-
-}  // namespace
 
 DemSolver::DemSolver(const DemParams& d, Particles particles)
     : walls_(d.walls),
@@ -343,6 +310,11 @@ bool DemSolver::particle_pass(int t, std::size_t b, std::size_t e, double dtau, 
       ++wall_contacts;
     }
   }
+  return finish_particle_pass(b, e, wall_contacts, sliding, max_wall_ratio, acc);
+}
+
+bool DemSolver::finish_particle_pass(std::size_t b, std::size_t e, int wall_contacts, int sliding,
+                                     double max_wall_ratio, StepPartial& acc) {
   bool outside = false;
   for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk)
     outside |= after_forces(blk, std::max(b, blk * kParticleBlock),

@@ -153,6 +153,10 @@ class DemSolver {
   void pair_pass_depth(int t, std::size_t e, double dtau, bool incremental, StepPartial& acc);
   bool particle_pass_depth(int t, std::size_t b, std::size_t e, double dtau, bool incremental,
                            StepPartial& acc);
+  // The end of a particle pass over [b, e): the integrator's part after the forces, each block's
+  // kinetic energy and the box check (true: a particle left it), the walls' counts into acc.
+  bool finish_particle_pass(std::size_t b, std::size_t e, int wall_contacts, int sliding,
+                            double max_wall_ratio, StepPartial& acc);
   void before_forces(std::size_t b, std::size_t e);
   bool after_forces(std::size_t blk, std::size_t i0, std::size_t i1);
   void finish_step();

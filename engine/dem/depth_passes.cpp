@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/threads.hpp"
+#include "dem/block_ledger.hpp"
 #include "dem/dem_solver.hpp"
 
 namespace fluidbed {
@@ -21,6 +22,20 @@ Vec3 rolling_torque_3d(double mu_r, double r_roll, double fn_spring, const Vec3&
   if (spin <= 0.0) return {};
   const double m = rolling_torque(mu_r, r_roll, fn_spring, spin, inv_inertia_sum, h);  // <= 0
   return (m / spin) * w_rel;
+}
+
+// One step of a contact whose history is entry k of h (the pair slots or the wall history: dn,
+// ds, ds_y, ds_z): contact_force_3d from the history's shear vector, the new history written back.
+template <class History>
+ContactForce3 advance_contact(History& h, std::size_t k, const ContactParams& params, double dn,
+                              const Vec3& n, const Vec3& vr, double tau, double dtau) {
+  Vec3 shear{h.ds[k], h.ds_y[k], h.ds_z[k]};
+  const ContactForce3 f = contact_force_3d(params, dn, shear, n, vr, tau, dtau);
+  h.dn[k] = dn;
+  h.ds[k] = shear.x;
+  h.ds_y[k] = shear.y;
+  h.ds_z[k] = shear.z;
+  return f;
 }
 
 }  // namespace
@@ -47,6 +62,7 @@ void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremen
   pass.clear();
   pass_depth.clear();
   const auto end = static_cast<std::int32_t>(e);
+  BlockLedger ledger(block_ledger_.data());  // by the pairs' first particles: they come in i order
   for (std::int64_t k = k0; k < k1; ++k) {
     const std::int32_t i = S.i[k], j = S.j[k];
     const Vec3 p{x[j] - x[i], y[j] - y[i], z[j] - z[i]};
@@ -76,12 +92,7 @@ void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremen
     if (fresh && incremental)
       tau = std::min(time_since_touch(p.x, p.y, -v_rel.x, -v_rel.y, R, Lc, p.z, -v_rel.z), dtau);
     const double dn = incremental ? S.dn[k] + dot(vr, n) * tau : R - Lc;  // eqs 14, 16
-    Vec3 sh{S.ds[k], S.ds_y[k], S.ds_z[k]};
-    ContactForce3 f = contact_force_3d(params_, dn, sh, n, vr, tau, dtau);
-    S.dn[k] = dn;
-    S.ds[k] = sh.x;
-    S.ds_y[k] = sh.y;
-    S.ds_z[k] = sh.z;
+    ContactForce3 f = advance_contact(S, static_cast<std::size_t>(k), params_, dn, n, vr, tau, dtau);
     Vec3 roll;
     if (rolling) {
       const Vec3 w_rel{wx[i] - wx[j], wy[i] - wy[j], wz[i] - wz[j]};
@@ -93,8 +104,7 @@ void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremen
     worst = ratio > max_ratio ? k : worst;
     max_ratio = std::max(max_ratio, ratio);
     sliding += f.sliding;
-    block_ledger_[static_cast<std::size_t>(i) / kParticleBlock] += {0.0, f.loss.dashpot,
-                                                                   f.loss.friction};
+    ledger.add(static_cast<std::size_t>(i), 0.0, f.loss);
     on[count] = static_cast<std::int32_t>(k);
     cs.fx[k0 + count] = f.force.x;
     cs.fy[k0 + count] = f.force.y;
@@ -192,6 +202,7 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
   WallHistory& wh = state_.walls;
   const int nw = static_cast<int>(walls_.size());
   double max_wall_ratio = 0.0;
+  BlockLedger wall_ledger(block_ledger_.data());
   int wall_contacts = 0, sliding = 0;
   auto wall_contact = [&](std::size_t i, int c) {
     const Wall& wall = walls_[static_cast<std::size_t>(c)];
@@ -214,18 +225,13 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
     double tau = dtau;
     if (fresh && incremental) tau = std::min(time_since_touch_wall(overlap, vn), dtau);
     const double dn = incremental ? wh.dn[s] + vn * tau : overlap;
-    Vec3 sh{wh.ds[s], wh.ds_y[s], wh.ds_z[s]};
-    ContactForce3 f = contact_force_3d(params_, dn, sh, n, vr, tau, dtau);
-    wh.dn[s] = dn;
-    wh.ds[s] = sh.x;
-    wh.ds_y[s] = sh.y;
-    wh.ds_z[s] = sh.z;
+    ContactForce3 f = advance_contact(wh, s, params_, dn, n, vr, tau, dtau);
     Vec3 roll;
     if (params_.mu_r > 0.0) {
       roll = rolling_torque_3d(params_.mu_r, r[i], f.fn_spring, spin, inv_i[i], dtau);
       f.loss.friction += std::sqrt(dot(roll, roll) * dot(spin, spin)) * dtau;
     }
-    block_ledger_[i / kParticleBlock] += {0.0, f.loss.dashpot, f.loss.friction};
+    wall_ledger.add(i, 0.0, f.loss);
     fx[i] += f.force.x;
     fy[i] += f.force.y;
     fz[i] += f.force.z;
@@ -241,14 +247,7 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
     for (const int c : planar_walls_) wall_contact(static_cast<std::size_t>(ni), c);
   for (std::size_t i = b; i < e; ++i)
     for (const int c : depth_walls_) wall_contact(i, c);
-  bool outside = false;
-  for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk)
-    outside |= after_forces(blk, std::max(b, blk * kParticleBlock),
-                            std::min(e, (blk + 1) * kParticleBlock));
-  acc.wall_contacts += wall_contacts;
-  acc.sliding += sliding;
-  acc.max_wall_ratio = std::max(acc.max_wall_ratio, max_wall_ratio);
-  return outside;
+  return finish_particle_pass(b, e, wall_contacts, sliding, max_wall_ratio, acc);
 }
 
 }  // namespace fluidbed
