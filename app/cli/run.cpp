@@ -57,6 +57,20 @@ std::vector<int> parse_ids(const std::string& list, std::size_t count) {
   return ids;
 }
 
+// The particles whose paths a run's plots follow: --track's ids, else those nearest the jet's
+// region.
+std::vector<int> tracked_ids(const std::string& track, const Simulation& sim, double width) {
+  return track.empty() ? nearest_particles(sim.dem().particles(), jet_region_points(width))
+                       : parse_ids(track, sim.particle_count());
+}
+
+// --checkpoint-every S: every S wall seconds from the start; without it, every 60 s once the run
+// is expected to take more than two minutes.
+void set_checkpoint_interval(RunOptions& opt, double every) {
+  opt.checkpoint_interval = every < 0.0 ? 60.0 : every;
+  opt.checkpoint_min_run = every < 0.0 ? 120.0 : 0.0;
+}
+
 // What a run writes beside its summary and timeseries (pictures, plots, bubbles), by the names
 // of visit_output_options.
 nlohmann::json output_options(RunArgs a) {
@@ -275,12 +289,8 @@ int run_ensemble(const RunArgs& a) {
     if (checkpoint) restore_simulation(*checkpoint, sim);
     std::unique_ptr<TrajectoryRecorder> tracks;
     if (a.plots) {
-      const std::vector<int> ids =
-          a.track.empty()
-              ? nearest_particles(sim.dem().particles(), jet_region_points(sk.domain.width))
-              : parse_ids(a.track, sim.particle_count());
-      tracks =
-          std::make_unique<TrajectoryRecorder>(ids, sk.diagnostics.output_interval, sk.time.dt);
+      tracks = std::make_unique<TrajectoryRecorder>(tracked_ids(a.track, sim, sk.domain.width),
+                                                    sk.diagnostics.output_interval, sk.time.dt);
       if (checkpoint) restore_tracks(checkpoint->folder, *tracks, sim.particle_count());
     }
     LiveRunFolder live(dir, sk.scene.name, a.bubbles, 1.0,
@@ -309,8 +319,7 @@ int run_ensemble(const RunArgs& a) {
     options["seed"] = seed;
     checkpoint_with_outputs(opt, {dir, scene_toml, options, a.bubbles, nullptr, tracks.get()},
                             checkpoint ? &*checkpoint : nullptr);
-    opt.checkpoint_interval = a.checkpoint_every < 0.0 ? 60.0 : a.checkpoint_every;
-    opt.checkpoint_min_run = a.checkpoint_every < 0.0 ? 120.0 : 0.0;
+    set_checkpoint_interval(opt, a.checkpoint_every);
     if (checkpoint) {
       char line[160];
       std::snprintf(line, sizeof line, "seed %llu: resumed at t = %.6g s",
@@ -416,13 +425,8 @@ int run_command(const RunArgs& given) {
   if (checkpoint) restore_simulation(*checkpoint, sim);
   std::unique_ptr<TrajectoryRecorder> tracks;
   if (a.plots) {
-    std::vector<int> ids;
-    if (a.track.empty()) {
-      ids = nearest_particles(sim.dem().particles(), jet_region_points(s.domain.width));
-    } else {
-      ids = parse_ids(a.track, sim.particle_count());
-    }
-    tracks = std::make_unique<TrajectoryRecorder>(ids, s.diagnostics.output_interval, s.time.dt);
+    tracks = std::make_unique<TrajectoryRecorder>(tracked_ids(a.track, sim, s.domain.width),
+                                                  s.diagnostics.output_interval, s.time.dt);
   }
   const double until = a.until >= 0.0 ? a.until : s.time.end;
   // Frames, video, montage, VTK: snapshots at exact times, drawn and written by a worker thread.
@@ -453,8 +457,7 @@ int run_command(const RunArgs& given) {
   checkpoint_with_outputs(
       opt, {out, scene_toml, run_options(a, until), a.bubbles, pictures.get(), tracks.get()},
       checkpoint ? &*checkpoint : nullptr);
-  opt.checkpoint_interval = a.checkpoint_every < 0.0 ? 60.0 : a.checkpoint_every;
-  opt.checkpoint_min_run = a.checkpoint_every < 0.0 ? 120.0 : 0.0;
+  set_checkpoint_interval(opt, a.checkpoint_every);
   opt.on_row = [&](const TimeseriesRow& row) { live.row(row); };
   opt.stop = [] { return InterruptGuard::received() != 0; };
   const InterruptGuard interrupts;

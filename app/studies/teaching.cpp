@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "dem/contact_law.hpp"
 #include "run/packed_bed.hpp"
 #include "scene/scene_loader.hpp"
 #include "studies/study.hpp"
@@ -91,10 +92,9 @@ double teaching_dt(double kappa) {
   return std::stod(fmt("%.4g", tc_pair / 3.15));
 }
 
-// The damping of the paper's restitution at stiffness kappa: the restitution hangs on
-// eta / sqrt(kappa m), so eta scales with sqrt(kappa) from the paper's.
+// The damping of the paper's restitution at stiffness kappa.
 double teaching_damping(const Settings& paper, double kappa) {
-  return paper.contact.damping * std::sqrt(kappa / paper.contact.stiffness);
+  return damping_for_stiffness(paper.contact.damping, paper.contact.stiffness, kappa);
 }
 
 double number_of(const TeachingPoint& p, const char* column) {

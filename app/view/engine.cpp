@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/steps.hpp"
+#include "dem/contact_law.hpp"
 #include "run/bubble_recorder.hpp"
 #include "run/packed_bed.hpp"
 #include "sim/checks.hpp"
@@ -65,8 +66,8 @@ Settings with_contact(const Settings& scene, bool ideal, double stiffness) {
   Settings s = scene;
   if (stiffness > 0.0 && stiffness != scene.contact.stiffness) {
     if (!std::isfinite(stiffness)) throw InputError("the stiffness must be a finite number of N/m");
-    // e depends on eta / sqrt(kappa m): scaling eta with sqrt(kappa) keeps the restitution.
-    s.contact.damping = scene.contact.damping * std::sqrt(stiffness / scene.contact.stiffness);
+    s.contact.damping =
+        damping_for_stiffness(scene.contact.damping, scene.contact.stiffness, stiffness);
     s.contact.stiffness = stiffness;
     const SceneCheck c = check_scene(s);
     if (!c.refusals.empty()) {

@@ -180,4 +180,10 @@ inline double restitution_from_damping(double k, double eta, double m) {
   return std::exp(-std::numbers::pi * z / std::sqrt(1.0 - z * z));
 }
 
+// The dashpot that keeps a contact's restitution when its spring changes from k0 to k: the
+// restitution hangs on eta / sqrt(k m) alone, so eta scales with sqrt(k / k0).
+inline double damping_for_stiffness(double eta0, double k0, double k) {
+  return eta0 * std::sqrt(k / k0);
+}
+
 }  // namespace fluidbed

@@ -2,11 +2,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "dem/contact_law.hpp"
 
 using fluidbed::contact_force;
 using fluidbed::ContactParams;
+using fluidbed::damping_for_stiffness;
+using fluidbed::restitution_from_damping;
 
 namespace {
 ContactParams paper() { return ContactParams{50000.0, 50000.0, 0.15, 0.15, 0.3}; }
@@ -155,4 +158,16 @@ TEST(ContactLaw, BackwardProjectedTouchTimeOffThePlane) {
   const double L = std::hypot(0.003, 0.0025);
   const double s = fluidbed::time_since_touch(0.003, 0.0, -1.0, 0.0, 0.004, L, 0.0025, 0.0);
   EXPECT_NEAR(s, std::sqrt(0.004 * 0.004 - 0.0025 * 0.0025) - 0.003, 1e-15);
+}
+
+// The teaching scene's damping by hand: 0.15 kg/s at 50,000 N/m becomes 0.15 sqrt(0.2) =
+// 0.0670820393249937 kg/s at 10,000 N/m, and the restitution of a sphere on a wall (m = 4/3 pi
+// (2 mm)^3 2500 kg/m^3) is the same at both.
+TEST(ContactLaw, DampingScaledWithStiffnessKeepsTheRestitution) {
+  const double eta = damping_for_stiffness(0.15, 50000.0, 10000.0);
+  EXPECT_NEAR(eta, 0.067082039324993681, 1e-16);
+  const double m = 4.0 / 3.0 * std::numbers::pi * 0.002 * 0.002 * 0.002 * 2500.0;
+  EXPECT_NEAR(restitution_from_damping(10000.0, eta, m), restitution_from_damping(50000.0, 0.15, m),
+              1e-14);
+  EXPECT_LT(restitution_from_damping(10000.0, 0.15, m), restitution_from_damping(50000.0, 0.15, m));
 }
