@@ -10,7 +10,7 @@ double sphere_volume(double R) {
 }
 }  // namespace
 
-__attribute__((target_clones("avx2", "default"))) void di_felice_beta_many(
+__attribute__((target_clones("avx512f", "avx2", "default"))) void di_felice_beta_many(
     std::size_t n, const double* R, const double* eps, const double* ln_eps, const double* slip,
     double rho_f, double mu_f, double* beta) {
 #pragma omp simd

@@ -47,8 +47,8 @@ inline double di_felice_beta_ln(double R, double rho_f, double mu_f, double eps,
 }
 
 // di_felice_beta_ln for particles [0, n) from arrays: the coupler's hot loop. Pure arithmetic
-// over arrays, built for SSE2 and for AVX2 where the CPU has it (the same operations in the
-// same order: the same bits either way; no fused multiply-add).
+// over arrays, built for SSE2, AVX2 and AVX-512 and chosen for the CPU at run time (the same
+// operations in the same order: the same bits on each; no fused multiply-add, -ffp-contract=off).
 void di_felice_beta_many(std::size_t n, const double* R, const double* eps, const double* ln_eps,
                          const double* slip, double rho_f, double mu_f, double* beta);
 

@@ -140,7 +140,7 @@ inline double cap_volume_select(double R, double a, bool crossed) {
 
 }  // namespace
 
-__attribute__((target_clones("avx2", "default"))) void share_geometry(
+__attribute__((target_clones("avx512f", "avx2", "default"))) void share_geometry(
     const GasGrid& g, std::size_t n, const double* x, const double* y, const double* R,
     ShareGeometry& out) {
   const double dx = g.dx(), dy = g.dy();

@@ -1,6 +1,6 @@
 #pragma once
 // The arithmetic of the pair pass over flat arrays, branch-free so that the compiler handles
-// several pairs at a time (built for AVX2 as well, chosen at run time): which candidate pairs
+// several pairs at a time (built for AVX-512 and AVX2 as well, chosen at run time): which pairs
 // touch, and the contact law (dem/contact_law.hpp, eqs 3-7 and 13-17) for those that do. The
 // operations and their order are those of the scalar law, so the results are the same bits on
 // every instruction set.
