@@ -51,9 +51,9 @@ ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double
 
 double particle_value(ColourBy c, const Snapshot& s, std::size_t i) {
   switch (c) {
-    case ColourBy::speed: return std::hypot(s.vx[i], s.vy[i]);
-    case ColourBy::force: return std::hypot(s.fx[i], s.fy[i]);
-    case ColourBy::torque: return std::abs(s.torque[i]);
+    case ColourBy::speed: return s.speed(i);
+    case ColourBy::force: return s.force(i);
+    case ColourBy::torque: return s.torque_magnitude(i);
     case ColourBy::overlap: return i < s.overlap.size() ? s.overlap[i] : 0.0;
     case ColourBy::height: return i < s.initial_y.size() ? s.initial_y[i] : s.y[i];
     case ColourBy::depth: return i < s.z.size() ? s.z[i] : 0.5 * s.thickness;

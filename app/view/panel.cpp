@@ -88,10 +88,15 @@ void Viewer::draw_particle_info(std::size_t i, bool tooltip) {
     ImGui::Text("position  %.4f, %.4f m, %.4f m behind the front", s.x[i], s.y[i], s.z[i]);
   else
     ImGui::Text("position  %.4f, %.4f m", s.x[i], s.y[i]);
-  ImGui::Text("velocity  %.3f, %.3f m/s (|v| %.3f)", s.vx[i], s.vy[i],
-              std::hypot(s.vx[i], s.vy[i]));
-  ImGui::Text("force     %.3g, %.3g N (|F| %.3g)", s.fx[i], s.fy[i], std::hypot(s.fx[i], s.fy[i]));
-  ImGui::Text("torque    %.3g N m   spin %.3g rad/s", s.torque[i], s.spin[i]);
+  if (i < s.vz.size() && i < s.fz.size()) {  // a thick bed: three components
+    ImGui::Text("velocity  %.3f, %.3f, %.3f m/s (|v| %.3f)", s.vx[i], s.vy[i], s.vz[i], s.speed(i));
+    ImGui::Text("force     %.3g, %.3g, %.3g N (|F| %.3g)", s.fx[i], s.fy[i], s.fz[i], s.force(i));
+    ImGui::Text("torque    |T| %.3g N m (about z %.3g)", s.torque_magnitude(i), s.torque[i]);
+  } else {
+    ImGui::Text("velocity  %.3f, %.3f m/s (|v| %.3f)", s.vx[i], s.vy[i], s.speed(i));
+    ImGui::Text("force     %.3g, %.3g N (|F| %.3g)", s.fx[i], s.fy[i], s.force(i));
+    ImGui::Text("torque    %.3g N m   spin %.3g rad/s", s.torque[i], s.spin[i]);
+  }
   ImGui::Text("contacts  %zu (%zu particles, %d walls), overlap %.2g", c.count(),
               c.particles.size(), c.walls, i < s.overlap.size() ? s.overlap[i] : c.max_overlap);
 }

@@ -109,10 +109,12 @@ void write_particles_vtp(const std::string& path, const Snapshot& s) {
     << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
     << "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
   const char* in = "        ";
-  floats(o, "velocity", 3, interleave(n, s.vx, s.vy, none), in);
-  floats(o, "force", 3, interleave(n, s.fx, s.fy, none), in);
-  floats(o, "torque", 3, interleave(n, none, none, s.torque), in);
-  floats(o, "spin", 3, interleave(n, none, none, s.spin), in);
+  // A monolayer's z components are 0 (its arrays across the slab are empty); a thick bed's are
+  // its own.
+  floats(o, "velocity", 3, interleave(n, s.vx, s.vy, s.vz), in);
+  floats(o, "force", 3, interleave(n, s.fx, s.fy, s.fz), in);
+  floats(o, "torque", 3, interleave(n, s.torque_x, s.torque_y, s.torque), in);
+  floats(o, "spin", 3, interleave(n, s.spin_x, s.spin_y, s.spin), in);
   floats(o, "overlap", 1, s.overlap.size() == n ? s.overlap : std::vector<double>(n, 0.0), in);
   floats(o, "radius", 1, s.radius, in);
   floats(o, "initial_height", 1, s.initial_y.size() == n ? s.initial_y : s.y, in);

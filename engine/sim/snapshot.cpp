@@ -1,5 +1,6 @@
 #include "sim/snapshot.hpp"
 
+#include <array>
 #include <cstring>
 
 #include "sim/simulation.hpp"
@@ -7,7 +8,16 @@
 namespace fluidbed {
 
 namespace {
-constexpr char kSnapshotTag[8] = {'F', 'L', 'B', 'S', 'N', 'A', 'P', '2'};
+// Version 3 adds a thick bed's velocity and force across the slab, spin and torque about x and
+// y; version 2 (a checkpoint written before them) loads with those empty.
+constexpr char kSnapshotTag[8] = {'F', 'L', 'B', 'S', 'N', 'A', 'P', '3'};
+constexpr std::size_t kTagVersion = sizeof kSnapshotTag - 1;
+
+// Snapshot or const Snapshot: pointers to its vectors across the slab, in file order.
+template <class S>
+auto depth_vectors(S& s) {
+  return std::array{&s.vz, &s.fz, &s.spin_x, &s.spin_y, &s.torque_x, &s.torque_y};
+}
 }  // namespace
 
 void save_snapshot(std::ostream& out, const Snapshot& s) {
@@ -26,12 +36,16 @@ void save_snapshot(std::ostream& out, const Snapshot& s) {
     put_vec(out, *v);
   put_vec(out, s.void_fraction);
   put_vec(out, s.bubble_edges);
+  for (const std::vector<double>* v : depth_vectors(s)) put_vec(out, *v);
 }
 
 void load_snapshot(BinarySource& in, Snapshot& s) {
   char tag[sizeof kSnapshotTag];
   in.stream().read(tag, sizeof tag);
-  if (!in.stream() || std::memcmp(tag, kSnapshotTag, sizeof tag) != 0) in.fail("not a snapshot's");
+  const bool version2 = in.stream() && std::memcmp(tag, kSnapshotTag, kTagVersion) == 0 &&
+                        tag[kTagVersion] == '2';
+  if (!in.stream() || (!version2 && std::memcmp(tag, kSnapshotTag, sizeof tag) != 0))
+    in.fail("not a snapshot's");
   for (double* v : {&s.time, &s.dt, &s.width, &s.height, &s.thickness, &s.jet_width,
                     &s.superficial_velocity, &s.jet_velocity, &s.dp, &s.max_overlap_ratio,
                     &s.kinetic_energy, &s.void_dx, &s.void_dy})
@@ -50,6 +64,12 @@ void load_snapshot(BinarySource& in, Snapshot& s) {
     in.get_vec(*v);
   in.get_vec(s.void_fraction);
   in.get_vec(s.bubble_edges);
+  for (std::vector<double>* v : depth_vectors(s)) {
+    if (version2)
+      v->clear();
+    else
+      in.get_vec(*v);
+  }
 }
 
 void take_snapshot(const Simulation& sim, Snapshot& out) {
@@ -77,6 +97,12 @@ void take_snapshot(const Simulation& sim, Snapshot& out) {
   out.fx = p.fx;
   out.fy = p.fy;
   out.torque = p.torque;
+  out.vz = p.vz;
+  out.fz = p.fz;
+  out.spin_x = p.wx;
+  out.spin_y = p.wy;
+  out.torque_x = p.torque_x;
+  out.torque_y = p.torque_y;
   out.overlap = dem.particle_overlap();
   out.initial_y = sim.initial_heights();
   if (const GasSolver* g = sim.gas()) {

@@ -3,6 +3,7 @@
 // instant. The engine thread fills one after a step and publishes it; readers (renderer, VTK
 // writer, viewer) never touch the live state.
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -37,6 +38,11 @@ struct Snapshot {
   std::vector<double> z;                // m, across the slab from the front wall (empty in a monolayer)
   std::vector<double> vx, vy, spin;     // m/s, rad/s
   std::vector<double> fx, fy, torque;   // N, N m: total force (contacts, gravity, gas) and torque
+  // A thick bed's other components (empty in a monolayer): velocity and force across the slab,
+  // spin and torque about x and y.
+  std::vector<double> vz, fz;                  // m/s, N
+  std::vector<double> spin_x, spin_y;          // rad/s
+  std::vector<double> torque_x, torque_y;      // N m
   std::vector<double> overlap;          // largest overlap ratio of each particle's contacts
   std::vector<double> initial_y;        // m, height at the start of the run (mixing colours)
   // Gas (empty without gas): nx * ny cells, c = j * nx + i.
@@ -54,7 +60,20 @@ struct Snapshot {
   std::vector<float> bubble_edges;
 
   std::size_t particles() const { return x.size(); }
+  // Magnitudes of particle i's velocity (m/s), force (N) and torque (N m): in the plane for a
+  // monolayer, in three dimensions for a thick bed.
+  double speed(std::size_t i) const { return magnitude(vx[i], vy[i], vz, i); }
+  double force(std::size_t i) const { return magnitude(fx[i], fy[i], fz, i); }
+  double torque_magnitude(std::size_t i) const {
+    const double tx = i < torque_x.size() ? torque_x[i] : 0.0;
+    return magnitude(tx, torque[i], torque_y, i);
+  }
   bool has_gas() const { return nx > 0; }
+
+ private:
+  static double magnitude(double a, double b, const std::vector<double>& c, std::size_t i) {
+    return i < c.size() ? std::sqrt(a * a + b * b + c[i] * c[i]) : std::hypot(a, b);
+  }
 };
 
 // Copies the simulation's state into `out` (reusing its buffers).

@@ -402,6 +402,25 @@ TEST_F(Render, DepthModeSpansTheSlabFromFrontToBack) {
   EXPECT_DOUBLE_EQ(depth_shade(s, 1), 0.5 * (1.0 + kBackShade));
 }
 
+// Speed, force and torque colours are magnitudes: in the plane for a monolayer, in three
+// dimensions for a thick bed (3-4-12 triangles: |(3, 4)| = 5, |(3, 4, 12)| = 13).
+TEST(ColourModes, MagnitudesCountTheSlabsPartsInAThickBed) {
+  Snapshot s = empty_box();
+  add_particle(s, {0.03, 0.05, 0.002, 3.0, 4.0, 0.3, 0.4, 4e-5});
+  EXPECT_DOUBLE_EQ(particle_value(ColourBy::speed, s, 0), 5.0);
+  EXPECT_DOUBLE_EQ(particle_value(ColourBy::force, s, 0), 0.5);
+  EXPECT_DOUBLE_EQ(particle_value(ColourBy::torque, s, 0), 4e-5);
+  s.thickness = 0.02;
+  s.z = {0.01};
+  s.vz = {12.0};
+  s.fz = {1.2};
+  s.torque_x = {3e-5};
+  s.torque_y = {12e-5};
+  EXPECT_DOUBLE_EQ(particle_value(ColourBy::speed, s, 0), 13.0);
+  EXPECT_DOUBLE_EQ(particle_value(ColourBy::force, s, 0), 1.3);
+  EXPECT_NEAR(particle_value(ColourBy::torque, s, 0), 13e-5, 1e-19);
+}
+
 TEST(RenderBackends, UnknownNameListsTheKnownOnes) {
   try {
     make_context("vulkan", 64, 64);

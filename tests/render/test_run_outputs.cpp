@@ -194,6 +194,96 @@ TEST(VtkParticles, PointsAreAtTheSnapshotsDepth) {
   EXPECT_NEAR(mono[5], 0.01, 1e-8);
 }
 
+// A thick bed's vectors carry their parts across the slab and about x and y: velocity (vx, vy,
+// vz), force (fx, fy, fz), spin and torque (about x, y, z). A monolayer's have 0 there.
+TEST(VtkParticles, AThickBedsVectorsHaveTheirPartsAcrossTheSlab) {
+  const fs::path dir = temp_dir("vtk-depth-vectors");
+  fluidbed::Snapshot s = empty_box();
+  s.thickness = 0.02;
+  add_particle(s, {0.01, 0.02, 0.002, 0.1, 0.2, 0.3, 0.4, 5e-5});
+  add_particle(s, {0.03, 0.04, 0.002, -0.1, -0.2, -0.3, -0.4, -5e-5});
+  s.spin = {7.0, -7.0};
+  s.z = {0.0035, 0.0162};
+  s.vz = {0.25, -0.5};
+  s.fz = {1e-3, -2e-3};
+  s.spin_x = {1.0, 2.0};
+  s.spin_y = {3.0, 4.0};
+  s.torque_x = {1e-5, 2e-5};
+  s.torque_y = {3e-5, 4e-5};
+  fluidbed::write_particles_vtp((dir / "thick.vtp").string(), s);
+  const auto thick = read_arrays(dir / "thick.vtp");
+  const std::map<std::string, std::vector<double>> want = {
+      {"velocity", {0.1, 0.2, 0.25, -0.1, -0.2, -0.5}},
+      {"force", {0.3, 0.4, 1e-3, -0.3, -0.4, -2e-3}},
+      {"spin", {1.0, 3.0, 7.0, 2.0, 4.0, -7.0}},
+      {"torque", {1e-5, 3e-5, 5e-5, 2e-5, 4e-5, -5e-5}}};
+  for (const auto& [name, values] : want) {
+    const auto& got = thick.at(name).values;
+    ASSERT_EQ(got.size(), 6u) << name;
+    for (std::size_t k = 0; k < 6; ++k)
+      EXPECT_NEAR(got[k], values[k], 1e-7 * std::abs(values[k])) << name << " " << k;
+  }
+  for (auto* v : {&s.z, &s.vz, &s.fz, &s.spin_x, &s.spin_y, &s.torque_x, &s.torque_y}) v->clear();
+  fluidbed::write_particles_vtp((dir / "monolayer.vtp").string(), s);
+  const auto mono = read_arrays(dir / "monolayer.vtp");
+  EXPECT_EQ(mono.at("velocity").values[2], 0.0);
+  EXPECT_EQ(mono.at("force").values[5], 0.0);
+  EXPECT_EQ(mono.at("spin").values[0], 0.0);
+  EXPECT_EQ(mono.at("torque").values[4], 0.0);
+  EXPECT_NEAR(mono.at("torque").values[5], -5e-5, 1e-7 * 5e-5);  // Float32 in the file
+}
+
+// A snapshot's bytes give it back whole, a thick bed's parts across the slab included; one saved
+// before those parts existed (version 2: the same bytes without them) loads with them empty.
+TEST(SnapshotBytes, RoundTripKeepsTheSlabsPartsAndReadsVersion2) {
+  fluidbed::Snapshot s = empty_box();
+  add_particle(s, {0.01, 0.02, 0.002, 0.1, 0.2, 0.3, 0.4, 5e-5});
+  s.z = {0.0035};
+  s.vz = {0.25};
+  s.fz = {1e-3};
+  s.spin_x = {1.0};
+  s.spin_y = {3.0};
+  s.torque_x = {1e-5};
+  s.torque_y = {3e-5};
+  std::ostringstream out;
+  fluidbed::save_snapshot(out, s);
+  std::istringstream in(out.str());
+  fluidbed::BinarySource src(in, "test");
+  fluidbed::Snapshot back;
+  fluidbed::load_snapshot(src, back);
+  EXPECT_EQ(back.z, s.z);
+  EXPECT_EQ(back.vz, s.vz);
+  EXPECT_EQ(back.fz, s.fz);
+  EXPECT_EQ(back.spin_x, s.spin_x);
+  EXPECT_EQ(back.spin_y, s.spin_y);
+  EXPECT_EQ(back.torque_x, s.torque_x);
+  EXPECT_EQ(back.torque_y, s.torque_y);
+  EXPECT_EQ(back.vx, s.vx);
+
+  // Version 2: tag ...'2', and no six arrays at the end (each an empty array is its 8-byte
+  // length alone).
+  for (auto* v : {&s.vz, &s.fz, &s.spin_x, &s.spin_y, &s.torque_x, &s.torque_y}) v->clear();
+  std::ostringstream v3;
+  fluidbed::save_snapshot(v3, s);
+  std::string bytes = v3.str();
+  ASSERT_EQ(bytes.substr(0, 8), "FLBSNAP3");
+  bytes[7] = '2';
+  bytes.resize(bytes.size() - 6 * 8);
+  std::istringstream in2(bytes);
+  fluidbed::BinarySource src2(in2, "test");
+  fluidbed::Snapshot old;
+  old.vz = {9.0};  // a reused buffer: cleared by the load
+  fluidbed::load_snapshot(src2, old);
+  EXPECT_TRUE(old.vz.empty());
+  EXPECT_EQ(old.z, s.z);
+  EXPECT_EQ(old.x, s.x);
+  // Anything else is refused.
+  bytes[7] = '1';
+  std::istringstream in3(bytes);
+  fluidbed::BinarySource src3(in3, "test");
+  EXPECT_THROW(fluidbed::load_snapshot(src3, old), std::exception);
+}
+
 TEST_F(RunOutputs, FramesHaveTheRightCountAndSize) {
   ASSERT_EQ(with_.status, 0) << with_.err;
   std::vector<std::string> names;
