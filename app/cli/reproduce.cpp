@@ -104,8 +104,7 @@ TrackedRun run_tracked(Settings s, double until,
   };
   checkpoint_with_outputs(opt, {dir.string(), scene_toml, options, true, pictures.get(), &recorder},
                           checkpoint ? &*checkpoint : nullptr);
-  opt.checkpoint_interval = 60.0;
-  opt.checkpoint_min_run = 120.0;
+  set_checkpoint_interval(opt, -1.0);  // the default: reproduce has no --checkpoint-every
   const auto start = std::chrono::steady_clock::now();
   out.result = run_simulation(sim, opt);
   if (!out.result.completed) throw Interrupted{};

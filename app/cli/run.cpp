@@ -64,13 +64,6 @@ std::vector<int> tracked_ids(const std::string& track, const Simulation& sim, do
                        : parse_ids(track, sim.particle_count());
 }
 
-// --checkpoint-every S: every S wall seconds from the start; without it, every 60 s once the run
-// is expected to take more than two minutes.
-void set_checkpoint_interval(RunOptions& opt, double every) {
-  opt.checkpoint_interval = every < 0.0 ? 60.0 : every;
-  opt.checkpoint_min_run = every < 0.0 ? 120.0 : 0.0;
-}
-
 // What a run writes beside its summary and timeseries (pictures, plots, bubbles), by the names
 // of visit_output_options.
 nlohmann::json output_options(RunArgs a) {

@@ -21,4 +21,9 @@ void remove_run_checkpoint(const std::string& dir) {
   remove_video_parts(dir);
 }
 
+void set_checkpoint_interval(RunOptions& opt, double every) {
+  opt.checkpoint_interval = every < 0.0 ? 60.0 : every;
+  opt.checkpoint_min_run = every < 0.0 ? 120.0 : 0.0;
+}
+
 }  // namespace fluidbed::app

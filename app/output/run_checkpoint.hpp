@@ -25,6 +25,10 @@ struct OutputCheckpoint {
 // from `resumed` (else nullptr) opt.restore and opt.wall_before. The interval is the caller's.
 void checkpoint_with_outputs(RunOptions& opt, const OutputCheckpoint& c, const Checkpoint* resumed);
 
+// The interval: every `every` wall seconds from the start (--checkpoint-every); below 0, the
+// default: every 60 s once the run is expected to take more than two minutes.
+void set_checkpoint_interval(RunOptions& opt, double every);
+
 // A finished run's folder as an unstopped run leaves it: its checkpoint removed, then the video's
 // parts (which the checkpoint names).
 void remove_run_checkpoint(const std::string& dir);

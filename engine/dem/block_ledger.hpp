@@ -39,5 +39,4 @@ class BlockLedger {
   EnergyLedger sum_;
 };
 
-
 }  // namespace fluidbed

@@ -65,8 +65,8 @@ struct Snapshot {
   double speed(std::size_t i) const { return magnitude(vx[i], vy[i], vz, i); }
   double force(std::size_t i) const { return magnitude(fx[i], fy[i], fz, i); }
   double torque_magnitude(std::size_t i) const {
-    const double tx = i < torque_x.size() ? torque_x[i] : 0.0;
-    return magnitude(tx, torque[i], torque_y, i);
+    return i < torque_x.size() ? magnitude(torque_x[i], torque_y[i], torque, i)
+                               : std::abs(torque[i]);
   }
   bool has_gas() const { return nx > 0; }
 
