@@ -4,26 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "output/output_args.hpp"
 #include "render/asset_dir.hpp"
 
 namespace fluidbed::app {
-
-// Pictures and files of a run at exact simulated times (`run --frames --video --vtk --montage`,
-// see output/frames.hpp and README.md).
-struct OutputArgs {
-  bool frames = false, video = false, vtk = false;
-  std::string montage;                  // "0.2,0.4,0.6" (s); empty: none
-  double frame_interval = 0.04;         // s of simulated time (25 frames per simulated second)
-  std::string frame_size = "1280x720";  // px
-  std::string colour = "speed";         // speed, force, torque, overlap, height, depth, fixed
-  std::string colour_range;             // "MIN,MAX" in the quantity's unit; empty: its default
-  bool gas_arrows = true, gas_arrow_colour = false, particle_arrows = false;
-  bool porosity_background = false, dark = false;
-  bool bubble_outlines = false;         // the bubble analysis' outlines over the particles
-  double close_up = 0.4;                // frames: magnified lower fraction of the bed (0: none)
-  double video_fps = 25.0;
-  std::string gl_backend = "osmesa";
-};
 
 struct RunArgs {
   std::string scene;
@@ -99,6 +83,36 @@ struct ReproduceArgs {
   bool options_given = false;  // --quick, --seeds or --set on the command line
   bool threads_given = false;  // --threads on the command line
 };
+
+// How a command was started, as the identity file it resumes from keeps it (`run`: the
+// checkpoint's options.json and `run --seeds`' ensemble.json, with the output options under
+// "outputs"; `sweep`: sweep.json's "command"; `reproduce`: reproduce.json): f(key, member) for each
+// field, one list for writing and reading (core/json_fields.hpp).
+template <class Args, class F>
+void run_identity_fields(Args& a, F&& f) {
+  f("scene", a.scene);
+  f("overrides", a.overrides);
+  f("until_s", a.until);
+  f("threads", a.threads);
+  f("checkpoint_every_s", a.checkpoint_every);
+}
+template <class Args, class F>
+void sweep_identity_fields(Args& a, F&& f) {
+  f("scene", a.scene);
+  f("overrides", a.overrides);
+  f("velocities", a.velocities);
+  f("run_time_s", a.run_time);
+  f("averaging_start_s", a.averaging_start);
+  f("threads", a.threads);
+  f("seeds", a.seeds);
+}
+template <class Args, class F>
+void reproduce_identity_fields(Args& a, F&& f) {
+  f("quick", a.quick);
+  f("seeds", a.seeds);
+  f("overrides", a.overrides);
+  f("threads", a.threads);
+}
 
 struct CheckArgs {
   std::string scene;

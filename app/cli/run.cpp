@@ -20,16 +20,15 @@
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
+#include "core/json_fields.hpp"
 #include "core/run_pool.hpp"
 #include "core/threads.hpp"
 #include "output/frames.hpp"
 #include "output/plots.hpp"
-#include "output/run_checkpoint.hpp"
+#include "output/run_outputs.hpp"
 #include "run/checkpoint.hpp"
 #include "run/ensemble.hpp"
-#include "run/live_folder.hpp"
-#include "run/packed_bed.hpp"
-#include "run/run.hpp"
+#include "run/run_folder.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"
 
@@ -79,16 +78,22 @@ void set_output_options(const nlohmann::json& j, RunArgs& a) {
 }
 
 // How the run was started, as its checkpoint keeps it (run/checkpoint.hpp, options.json).
-nlohmann::json run_options(const RunArgs& a, double until) {
-  nlohmann::json o;
-  o["format"] = 1;
-  o["scene"] = std::filesystem::absolute(a.scene).lexically_normal().string();
-  o["overrides"] = a.overrides;
-  o["until_s"] = until;
-  o["threads"] = a.threads;
-  o["checkpoint_every_s"] = a.checkpoint_every;
+nlohmann::json run_options(RunArgs a, double until) {
+  a.scene = std::filesystem::absolute(a.scene).lexically_normal().string();
+  a.until = until;
+  nlohmann::json o = {{"format", 1}};
+  o.update(fields_json(a, [](auto& r, auto&& f) { run_identity_fields(r, f); }));
   o["outputs"] = output_options(a);
   return o;
+}
+
+// Reads `o`'s fields into `r`, but for those the command line gave anew: --threads (which changes
+// no result) and --checkpoint-every.
+void take_run_options(const nlohmann::json& o, const RunArgs& given, RunArgs& r) {
+  fields_from_json(o, r, [](auto& x, auto&& f) { run_identity_fields(x, f); });
+  if (given.threads_given) r.threads = given.threads;
+  if (given.checkpoint_every >= 0.0) r.checkpoint_every = given.checkpoint_every;
+  set_output_options(o.at("outputs"), r);
 }
 
 // `run --resume DIR`: the run's arguments from its checkpoint; anything given on the command line
@@ -110,42 +115,59 @@ RunArgs resumed_args(const RunArgs& a, const Checkpoint& c) {
                        o.at("ensemble").get<std::string>() +
                        ": resume the ensemble (fluidbed run --resume " +
                        o.at("ensemble").get<std::string>() + ")");
-    if (r.scene.empty()) r.scene = o.at("scene").get<std::string>();
-    if (r.overrides.empty()) r.overrides = o.at("overrides").get<std::vector<std::string>>();
     const double until = o.at("until_s").get<double>();
     if (a.until >= 0.0 && a.until != until) {
       char msg[160];
       std::snprintf(msg, sizeof msg, "--until %.9g differs from the run's %.9g", a.until, until);
       throw InputError(head + msg);
     }
-    r.until = until;
-    if (!a.threads_given) r.threads = o.at("threads").get<int>();
-    if (a.checkpoint_every < 0.0) r.checkpoint_every = o.at("checkpoint_every_s").get<double>();
     // The pictures, plots and bubbles are the run's: one given again must be the same.
     const nlohmann::json& outputs = o.at("outputs");
     const nlohmann::json given = output_options(a);
     for (const std::string& key : a.outputs_given)
       if (const nlohmann::json& value = given.at(key); outputs.at(key) != value)
-          throw InputError(head + "its output option " + key + " was " + outputs.at(key).dump() +
-                           ", not " + value.dump() + " (leave the output options out to resume)");
-    set_output_options(outputs, r);
+        throw InputError(head + "its output option " + key + " was " + outputs.at(key).dump() +
+                         ", not " + value.dump() + " (leave the output options out to resume)");
+    take_run_options(o, a, r);
+    // A scene or --set lines given again are checked against the run's (run/run_folder.hpp).
+    if (!a.scene.empty()) r.scene = a.scene;
+    if (!a.overrides.empty()) r.overrides = a.overrides;
   } catch (const nlohmann::json::exception&) {
     throw InputError(head + c.folder + "/options.json is not a checkpoint's options");
   }
   return r;
 }
 
-// How `run --seeds` was started, kept in DIR/ensemble.json for `run --resume DIR`.
-nlohmann::json ensemble_identity(const RunArgs& a) {
-  nlohmann::json o = run_options(a, a.until);
-  o["kind"] = "run --seeds";
-  o["seeds"] = a.seeds;
-  return o;
+// The job of one run of `run` (alone, or one seed of an ensemble) into `dir`: the scene, the
+// end time, the bubble analysis and the figures (--plots) it asks for; the pictures are the
+// caller's.
+RunJob run_job(const RunArgs& a, Settings s, const std::string& scene_note) {
+  RunJob job;
+  job.until = a.until >= 0.0 ? a.until : s.time.end;
+  job.bubbles = a.bubbles;
+  job.started = run_options(a, job.until);
+  job.scene_note = scene_note;
+  if (a.plots) {
+    const std::string track = a.track;
+    const double width = s.domain.width;
+    job.outputs.push_back(std::make_unique<PlotOutput>(
+        [track, width](const Simulation& sim) { return tracked_ids(track, sim, width); },
+        s.diagnostics.output_interval));
+  }
+  job.scene = std::move(s);
+  return job;
 }
 
-bool is_run_ensemble(const std::string& dir) {
-  namespace fs = std::filesystem;
-  return fs::is_regular_file(fs::path(dir) / "ensemble.json") && !has_checkpoint(dir);
+// What a run is told to stop by: an interrupt (SIGINT, SIGTERM), named in its status.json.
+RunControl interruptible(bool resume, double checkpoint_every) {
+  RunControl c;
+  c.resume = resume;
+  c.checkpoint_every = checkpoint_every;
+  c.stop = [] { return InterruptGuard::received() != 0; };
+  c.stop_reason = [] {
+    return std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
+  };
+  return c;
 }
 
 // `run --resume DIR` of an ensemble: its arguments from DIR/ensemble.json; only --threads (which
@@ -157,40 +179,23 @@ RunArgs resumed_ensemble_args(const RunArgs& given) {
     throw InputError(head + "a resumed ensemble takes its scene and options from "
                             "DIR/ensemble.json (give only --resume DIR and, if wanted, --threads)");
   check_resume_out(given.out, given.resume, head, "ensemble");
-  const std::string path = (std::filesystem::path(given.resume) / "ensemble.json").string();
+  const nlohmann::json o = read_ensemble_identity(given.resume, "run --seeds", head);
   RunArgs r = given;
   r.out = given.resume;
   try {
-    std::ifstream in = open_input_file(path, "ensemble file");
-    const nlohmann::json o = nlohmann::json::parse(in);
-    if (o.at("format").get<int>() != 1 || o.at("kind").get<std::string>() != "run --seeds")
-      throw InputError(head + path + " is not a run ensemble's");
-    r.scene = o.at("scene").get<std::string>();
-    r.overrides = o.at("overrides").get<std::vector<std::string>>();
-    r.until = o.at("until_s").get<double>();
-    if (!given.threads_given) r.threads = o.at("threads").get<int>();
-    r.checkpoint_every = o.at("checkpoint_every_s").get<double>();
-    r.seeds = o.at("seeds").get<std::string>();
-    set_output_options(o.at("outputs"), r);
+    take_run_options(o, given, r);
+    r.seeds = o.at("seeds_option").get<std::string>();
   } catch (const nlohmann::json::exception&) {
-    throw InputError(head + path + " is not a run ensemble's");
+    throw InputError(head + given.resume + "/ensemble.json is not a run ensemble's");
   }
   return r;
 }
 
-// A member that finished before the ensemble stopped: its summary.json, and its dp against time
-// from its timeseries.csv (the first two columns, t and dp) for the ensemble's dp chart.
-bool finished_member(const std::string& dir, nlohmann::json& summary, SeedTrace& trace) {
-  namespace fs = std::filesystem;
-  const fs::path d(dir);
-  if (has_checkpoint(dir) || !fs::is_regular_file(d / "summary.json")) return false;
-  try {
-    std::ifstream in(d / "summary.json");
-    summary = nlohmann::json::parse(in);
-  } catch (const std::exception&) {
-    return false;  // unreadable: the member runs again
-  }
-  std::ifstream csv(d / "timeseries.csv");
+// A member's dp against time, from its timeseries.csv (the first two columns, t and dp), for
+// the ensemble's dp chart.
+SeedTrace dp_trace(const std::string& dir, std::uint64_t seed) {
+  SeedTrace trace{seed, {}, {}};
+  std::ifstream csv(std::filesystem::path(dir) / "timeseries.csv");
   std::string line;
   std::getline(csv, line);  // header
   while (std::getline(csv, line)) {
@@ -200,7 +205,7 @@ bool finished_member(const std::string& dir, nlohmann::json& summary, SeedTrace&
     trace.t.push_back(t);
     trace.dp.push_back(std::strtod(end + 1, nullptr));
   }
-  return true;
+  return trace;
 }
 
 // `run --seeds`: the scene from each packing, side by side (one run a core), each member's usual
@@ -210,7 +215,7 @@ bool finished_member(const std::string& dir, nlohmann::json& summary, SeedTrace&
 // interrupt stops every member (status 130, no ensemble summary) and `run --resume DIR` reads the
 // finished members back, resumes the stopped ones and starts those not begun. The first member
 // that fails fails the ensemble (status 3) once the others ended.
-int run_ensemble(const RunArgs& a) {
+int run_seeds(const RunArgs& a) {
   const bool resume = !a.resume.empty();
   if (a.output.frames || a.output.video || a.output.vtk || !a.output.montage.empty())
     throw InputError(
@@ -228,27 +233,11 @@ int run_ensemble(const RunArgs& a) {
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw InputError("cannot create output folder " + out + ": " + ec.message());
-  fs::remove(fs::path(out) / "summary.json", ec);  // only a finished ensemble has one
-  auto member_dir = [&](std::uint64_t seed) {
-    return (fs::path(out) / "seeds" / std::to_string(seed)).string();
-  };
-  if (!resume) {
-    // A new ensemble: no member may resume from, or be read back as, an older one's run.
-    for (const std::uint64_t seed : seeds) {
-      remove_run_checkpoint(member_dir(seed));
-      fs::remove(fs::path(member_dir(seed)) / "summary.json", ec);
-    }
-    write_file_atomically((fs::path(out) / "ensemble.json").string(),
-                          [&](std::ostream& o) { o << ensemble_identity(a).dump(2) << "\n"; });
-  }
   {
     std::ofstream scene_out(fs::path(out) / "scene.toml");
     scene_out << "# the scene as run, every value resolved (each seed's: seeds/S/scene.toml)\n"
               << to_toml(s);
   }
-  std::vector<nlohmann::json> summaries(seeds.size());
-  std::vector<SeedTrace> traces(seeds.size());
-  std::vector<int> completed(seeds.size(), 0);
   std::mutex print_mutex;
   auto say = [&](const std::string& line) {
     std::lock_guard lock(print_mutex);
@@ -256,127 +245,67 @@ int run_ensemble(const RunArgs& a) {
     std::fflush(stdout);
   };
   const InterruptGuard interrupts;
-  auto member = [&](std::size_t k) {
-    const std::uint64_t seed = seeds[k];
-    const std::string dir = member_dir(seed);
-    traces[k].seed = seed;
-    if (resume && finished_member(dir, summaries[k], traces[k])) {
-      completed[k] = 1;
-      say("seed " + std::to_string(seed) + ": finished before, read back from " + dir + "/");
-      return;
+  EnsembleJob job;
+  job.dir = out;
+  job.seeds = seeds;
+  job.identity = run_options(a, a.until);
+  job.identity["kind"] = "run --seeds";
+  job.identity["seeds_option"] = a.seeds;
+  std::vector<SeedTrace> traces(seeds.size());
+  job.member = [&](std::size_t k, std::uint64_t seed,
+                   const std::string& dir) -> std::optional<nlohmann::json> {
+    const std::string tag = "seed " + std::to_string(seed) + ": ";
+    if (InterruptGuard::received() != 0 && !(resume && run_ended(dir)))
+      return std::nullopt;  // not begun: a resume starts it
+    // A packed start from particles.packing_scene packs with that scene's own seed unless an
+    // ensemble sets it, which no scene key says: the comment does, and how to run it again.
+    const std::string note =
+        "# the scene as run, every value resolved; an ensemble's member: its particles start "
+        "from lattice seed " + std::to_string(seed) +
+        " (packed: the packing scene's bed packed from that seed), which this file alone does "
+        "not set; run it again with --seeds " + std::to_string(seed) + ",T (any other seed T)\n";
+    RunJob member = run_job(a, with_seed(s, seed), note);
+    // Its checkpoint's options name the ensemble, which alone resumes it.
+    member.started["ensemble"] = out;
+    member.started["seed"] = seed;
+    RunControl control = interruptible(resume, a.checkpoint_every);
+    control.log = [&](const std::string& line) { say(tag + line); };
+    const RunEnd end = run_in_folder(dir, member, control);
+    if (end.how == RunEnd::How::failed) throw SimulationFailure(tag + end.error);
+    if (end.how == RunEnd::How::stopped) return std::nullopt;
+    traces[k] = dp_trace(dir, seed);
+    if (end.read_back) {
+      say(tag + "finished before, read back from " + dir + "/");
+    } else {
+      char line[200];
+      std::snprintf(line, sizeof line, "t = %.4g s in %.3g s wall; wrote %s/", end.t,
+                    end.result.summary["wall_time_s"].get<double>(), dir.c_str());
+      say(tag + line);
     }
-    traces[k] = SeedTrace{seed, {}, {}};
-    if (InterruptGuard::received() != 0) return;  // not begun: a resume starts it
-    Settings sk = with_seed(s, seed);
-    const std::string scene_toml = to_toml(sk);
-    std::optional<Checkpoint> checkpoint;
-    if (resume && has_checkpoint(dir)) {
-      checkpoint = read_checkpoint(dir);
-      if (checkpoint->scene_toml != scene_toml)
-        throw InputError("cannot resume seed " + std::to_string(seed) + " in " + dir +
-                         ": its scene is not the ensemble's (" +
-                         first_difference(scene_toml, checkpoint->scene_toml) + ")");
-    }
-    prepare_packed_bed(sk);
-    Simulation sim(sk);
-    if (checkpoint) restore_simulation(*checkpoint, sim);
-    std::unique_ptr<TrajectoryRecorder> tracks;
-    if (a.plots) {
-      tracks = std::make_unique<TrajectoryRecorder>(tracked_ids(a.track, sim, sk.domain.width),
-                                                    sk.diagnostics.output_interval, sk.time.dt);
-      if (checkpoint) restore_tracks(checkpoint->folder, *tracks, sim.particle_count());
-    }
-    LiveRunFolder live(dir, sk.scene.name, a.bubbles, 1.0,
-                       checkpoint ? checkpoint->timeseries_csv : std::string());
-    {
-      std::ofstream scene_out(fs::path(dir) / "scene.toml");
-      // A packed start from particles.packing_scene packs with that scene's own seed unless an
-      // ensemble sets it, which no scene key says: the comment does, and how to run it again.
-      scene_out << "# the scene as run, every value resolved; an ensemble's member: its particles "
-                   "start from lattice seed "
-                << seed << " (packed: the packing scene's bed packed from that seed), which this "
-                << "file alone does not set; run it again with --seeds " << seed
-                << ",T (any other seed T)\n"
-                << scene_toml;
-    }
-    RunOptions opt;
-    opt.until = a.until >= 0.0 ? a.until : sk.time.end;
-    opt.bubbles = a.bubbles;
-    if (tracks) opt.on_step = [&](const Simulation& x) { tracks->observe(x); };
-    opt.on_row = [&](const TimeseriesRow& row) { live.row(row); };
-    opt.stop = [] { return InterruptGuard::received() != 0; };
-    // The member's checkpoint, as `run`'s: periodic and at an interrupt; its options name the
-    // ensemble, which alone resumes it.
-    nlohmann::json options = run_options(a, opt.until);
-    options["ensemble"] = out;
-    options["seed"] = seed;
-    checkpoint_with_outputs(opt, {dir, scene_toml, options, a.bubbles, nullptr, tracks.get()},
-                            checkpoint ? &*checkpoint : nullptr);
-    set_checkpoint_interval(opt, a.checkpoint_every);
-    if (checkpoint) {
-      char line[160];
-      std::snprintf(line, sizeof line, "seed %llu: resumed at t = %.6g s",
-                    static_cast<unsigned long long>(seed), sim.time());
-      say(line);
-    }
-    RunResult r;
-    try {
-      r = run_simulation(sim, opt);
-    } catch (const SimulationFailure& e) {
-      live.failed(e.what());
-      throw SimulationFailure("seed " + std::to_string(seed) + ": " + e.what());
-    }
-    if (!r.completed) {
-      live.interrupted(sim.time(), std::string("stopped by ") +
-                                       InterruptGuard::name(InterruptGuard::received()));
-      return;
-    }
-    write_run_outputs(dir, r);
-    live.completed(sim.time());
-    remove_run_checkpoint(dir);
-    if (!sk.diagnostics.save_state.empty())
-      sim.save_state((fs::path(dir) / sk.diagnostics.save_state).string());
-    if (tracks)
-      plot_run(dir, r, tracks->tracks(), sk.domain.width, sk.domain.height, sim.has_gas());
-    for (const auto& row : r.rows) {
-      traces[k].t.push_back(row.t);
-      traces[k].dp.push_back(row.dp);
-    }
-    summaries[k] = r.summary;
-    completed[k] = 1;
-    char line[200];
-    std::snprintf(line, sizeof line, "seed %llu: t = %.4g s in %.3g s wall; wrote %s/",
-                  static_cast<unsigned long long>(seed), sim.time(),
-                  r.summary["wall_time_s"].get<double>(), dir.c_str());
-    say(line);
+    return end.result.summary;
   };
   // One run a core, each on a.threads threads (0: one per core, so the seeds one after another).
   const int cores = resolve_threads(0), per_run = resolve_threads(a.threads);
+  job.side_by_side = std::max(1, cores / per_run);
   std::printf("%s: %zu seeds, %d side by side\n", s.scene.name.c_str(), seeds.size(),
-              std::max(1, cores / per_run));
+              job.side_by_side);
   std::fflush(stdout);
-  std::vector<std::function<void()>> tasks;
-  for (std::size_t k = 0; k < seeds.size(); ++k) tasks.push_back([&, k] { member(k); });
-  RunPool(std::max(1, cores / per_run)).run(tasks);
-  if (InterruptGuard::received() != 0 ||
-      std::find(completed.begin(), completed.end(), 0) != completed.end()) {
+  const EnsembleResult r = run_ensemble(job, resume);
+  if (InterruptGuard::received() != 0 || !r.complete) {
     std::fprintf(stderr,
                  "interrupted: each seed's timeseries so far is in %s/seeds/S/, no ensemble "
                  "summary.json; resume with: fluidbed run --resume %s\n",
                  out.c_str(), out.c_str());
     return 130;
   }
-  nlohmann::json summary = ensemble_summary(summaries, seeds);
-  write_file_atomically((fs::path(out) / "summary.json").string(),
-                        [&](std::ostream& o) { o << summary.dump(2) << "\n"; });
-  const nlohmann::json& e = summary["ensemble"];
+  const nlohmann::json& e = r.summary["ensemble"];
   for (const char* key :
        {"dp_mean_pa", "dp_spectrum.dominant_frequency_refined_hz", "bed_height_mean_m",
         "bed_height_m", "solid_fraction", "bubbles.formed_per_s", "bubbles.mean_d_eq_m"})
     if (e.contains(key)) std::printf("  %s: %s\n", key, ensemble_line(e[key]).c_str());
   if (a.plots && s.gas.enabled) {
     const std::string p = (fs::path(out) / "dp.png").string();
-    plot_dp_ensemble(p, traces, summary.value("bed_weight_per_area_pa", 0.0), s.scene.name);
+    plot_dp_ensemble(p, traces, r.summary.value("bed_weight_per_area_pa", 0.0), s.scene.name);
     std::printf("wrote %s\n", p.c_str());
   }
   std::printf("wrote %s/summary.json (the ensemble of %zu seeds) and %s/seeds/S/\n", out.c_str(),
@@ -387,102 +316,53 @@ int run_ensemble(const RunArgs& a) {
 }  // namespace
 
 int run_command(const RunArgs& given) {
-  if (!given.resume.empty() && is_run_ensemble(given.resume))
-    return run_ensemble(resumed_ensemble_args(given));
+  if (!given.resume.empty() && holds_ensemble(given.resume) && !has_checkpoint(given.resume))
+    return run_seeds(resumed_ensemble_args(given));
   if (!given.seeds.empty()) {
     if (!given.resume.empty())
       throw InputError("cannot resume " + given.resume +
                        ": it holds no ensemble (DIR/ensemble.json); a resumed ensemble takes its "
                        "seeds from there (give only --resume DIR)");
-    return run_ensemble(given);
+    return run_seeds(given);
   }
-  std::optional<Checkpoint> checkpoint;
   RunArgs a = given;
   if (!given.resume.empty()) {
-    checkpoint = read_checkpoint(given.resume);
-    a = resumed_args(given, *checkpoint);
+    a = resumed_args(given, read_checkpoint(given.resume));
   } else if (given.scene.empty()) {
     throw InputError("run: give a scene file (fluidbed run SCENE.toml) or --resume DIR");
   }
   Settings s = load_scene(a.scene, a.overrides);
   refuse_unsafe_scene(s);
   s.threads = a.threads;
-  const std::string scene_toml = to_toml(s);
-  if (checkpoint && scene_toml != checkpoint->scene_toml)
-    throw InputError("cannot resume " + given.resume +
-                     ": the scene is not the one the run started with (" +
-                     first_difference(scene_toml, checkpoint->scene_toml) + ")");
   const std::string out = a.out.empty() ? default_out(a.scene) : a.out;
-  prepare_packed_bed(s);
-  Simulation sim(s);
-  if (checkpoint) restore_simulation(*checkpoint, sim);
-  std::unique_ptr<TrajectoryRecorder> tracks;
-  if (a.plots) {
-    tracks = std::make_unique<TrajectoryRecorder>(tracked_ids(a.track, sim, s.domain.width),
-                                                  s.diagnostics.output_interval, s.time.dt);
-  }
-  const double until = a.until >= 0.0 ? a.until : s.time.end;
+  RunJob job = run_job(a, s, "# the scene as run, every value resolved\n");
   // Frames, video, montage, VTK: snapshots at exact times, drawn and written by a worker thread.
-  std::unique_ptr<FrameOutput> pictures;
+  PictureOutput* pictures = nullptr;
   if (const FrameOptions fo = frame_options(a.output, asset_dir()); fo.any()) {
-    pictures = std::make_unique<FrameOutput>(out, fo, sim, until,
-                                             checkpoint ? checkpoint->folder : std::string());
-    if (!checkpoint) pictures->observe(sim);  // the starting state, when it is an output time
+    job.outputs.push_back(std::make_unique<PictureOutput>(out, fo));
+    pictures = static_cast<PictureOutput*>(job.outputs.back().get());
   }
-  if (tracks && checkpoint) restore_tracks(checkpoint->folder, *tracks, sim.particle_count());
-  RunOptions opt;
-  if (pictures || tracks)
-    opt.on_step = [&](const Simulation& x) {
-      if (pictures) pictures->observe(x);
-      if (tracks) tracks->observe(x);
-    };
-  opt.bubbles = a.bubbles;
-  // The folder says what the run is doing while it runs (run/live_folder.hpp), and an
-  // interrupt (SIGINT, SIGTERM) stops it at the end of a step.
-  LiveRunFolder live(out, s.scene.name, a.bubbles, 1.0,
-                     checkpoint ? checkpoint->timeseries_csv : std::string());
-  {
-    std::ofstream scene_out(std::filesystem::path(out) / "scene.toml");
-    scene_out << "# the scene as run, every value resolved\n" << scene_toml;
-  }
-  // Checkpoints (run/checkpoint.hpp): periodic and at an interrupt, with the pictures' and the
-  // trajectories' state beside the run's.
-  checkpoint_with_outputs(
-      opt, {out, scene_toml, run_options(a, until), a.bubbles, pictures.get(), tracks.get()},
-      checkpoint ? &*checkpoint : nullptr);
-  set_checkpoint_interval(opt, a.checkpoint_every);
-  opt.on_row = [&](const TimeseriesRow& row) { live.row(row); };
-  opt.stop = [] { return InterruptGuard::received() != 0; };
+  const PlotOutput* plots = a.plots ? static_cast<PlotOutput*>(job.outputs.front().get()) : nullptr;
+  RunControl control = interruptible(!given.resume.empty(), a.checkpoint_every);
+  control.progress = progress_printer(job.until);
   const InterruptGuard interrupts;
-  RunResult r;
-  try {
-    r = run_with_progress(sim, until, std::move(opt));
-  } catch (const SimulationFailure& e) {
-    live.failed(e.what());
-    throw;
-  }
-  if (!r.completed) {
-    const std::string why =
-        std::string("stopped by ") + InterruptGuard::name(InterruptGuard::received());
-    live.interrupted(sim.time(), why);
+  const RunEnd end = run_in_folder(out, job, control);
+  end_progress(control.progress);
+  if (end.how == RunEnd::How::failed) throw SimulationFailure(end.error);
+  if (end.how == RunEnd::How::stopped) {
     std::fprintf(stderr, "interrupted at t = %.6g s; resume with: fluidbed run --resume %s\n",
-                 sim.time(), out.c_str());
+                 end.t, out.c_str());
     return 130;
   }
-  const FrameStats picture_stats = pictures ? pictures->finish() : FrameStats{};
-  write_run_outputs(out, r);
-  live.completed(sim.time());
-  remove_run_checkpoint(out);  // the finished run's folder holds what an unstopped run's does
-  if (!s.diagnostics.save_state.empty())
-    sim.save_state((std::filesystem::path(out) / s.diagnostics.save_state).string());
+  const nlohmann::json& summary = end.result.summary;
   std::printf(
-      "%s: %lld steps of %zu particles to t = %.4g s in %.3g s wall (%.3g particle-steps/s)\n",
-      s.scene.name.c_str(), static_cast<long long>(r.summary["steps"].get<std::int64_t>()),
-      sim.particle_count(), sim.time(), r.summary["wall_time_s"].get<double>(),
-      r.summary["particle_steps_per_s"].get<double>());
+      "%s: %lld steps of %lld particles to t = %.4g s in %.3g s wall (%.3g particle-steps/s)\n",
+      s.scene.name.c_str(), static_cast<long long>(summary["steps"].get<std::int64_t>()),
+      static_cast<long long>(summary["particles"].get<std::int64_t>()), end.t,
+      summary["wall_time_s"].get<double>(), summary["particle_steps_per_s"].get<double>());
   std::printf("wrote %s/summary.json and %s/timeseries.csv\n", out.c_str(), out.c_str());
-  if (r.bubbles) {
-    const auto& b = r.summary["bubbles"];
+  if (a.bubbles) {
+    const auto& b = summary["bubbles"];
     auto num = [&](const char* k) { return b[k].is_number() ? b[k].get<double>() : 0.0; };
     std::printf(
         "bubbles: %.2f formed per s, %.2f eruptions per s, mean D_e %.1f mm, rise %.3f m/s, "
@@ -492,12 +372,9 @@ int run_command(const RunArgs& given) {
         out.c_str());
   }
   if (pictures)
-    report_frame_output(out, a.output, picture_stats, r.summary["wall_time_s"].get<double>());
-  if (tracks) {
-    const auto files =
-        plot_run(out, r, tracks->tracks(), s.domain.width, s.domain.height, sim.has_gas());
-    for (const auto& f : files) std::printf("wrote %s\n", f.c_str());
-  }
+    report_frame_output(out, a.output, pictures->stats(), summary["wall_time_s"].get<double>());
+  if (plots)
+    for (const auto& f : plots->files()) std::printf("wrote %s\n", f.c_str());
   return 0;
 }
 

@@ -1,5 +1,5 @@
 // fluidbed study: speed against accuracy, stability limits and model choices (see
-// app/studies/study.hpp and README.md, "Studies").
+// app/studies/common.hpp and README.md, "Studies").
 #include "cli/study.hpp"
 
 #include <cstdio>
@@ -11,7 +11,7 @@
 #include "core/errors.hpp"
 #include "core/threads.hpp"
 #include "run/ensemble.hpp"
-#include "studies/study.hpp"
+#include "studies/common.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -19,8 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // `study NAME --seeds`: the study once per packing, one after the other (each on every worker),
-// in DIR/seeds/S/; DIR/ensemble.json says which seeds (a resume without --seeds takes them from
-// there), and the ensemble's table and summary are written at the end (write_study_ensemble).
+// as an ensemble (run/ensemble.hpp): each member in DIR/seeds/S/, DIR/ensemble.json says which
+// study, size and seeds (a resume without --seeds takes them from there), and the ensemble's
+// table and summary are written at the end (write_study_ensemble).
 int study_ensemble(const study::Info& info, const study::Options& o, const StudyArgs& a) {
   using namespace study;
   const std::string head = "study " + std::string(info.name) + ": ";
@@ -31,58 +32,60 @@ int study_ensemble(const study::Info& info, const study::Options& o, const Study
     throw InputError(head + "--seeds is for the studies of the packed bed's behaviour (" + names +
                      "); this one does not start from a packing");
   }
-  const fs::path record = fs::path(o.out) / "ensemble.json";
-  std::string text = a.seeds;
+  const char* size = o.size == Size::Tiny ? "tiny" : "full";
+  const std::uint64_t first = lattice_seed(bed_scene(o.size));
+  std::vector<std::uint64_t> seeds;
   if (o.resume) {
-    std::ifstream in(record);
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    if (!in || j.is_discarded() || !j.contains("seeds") || !j["seeds"].is_string())
-      throw InputError("cannot resume " + o.out + ": it holds no study over packings (" +
-                       record.string() + ")");
-    if (j.value("study", "") != info.name || j.value("size", "") != (o.size == Size::Tiny ? "tiny" : "full"))
-      throw InputError("cannot resume " + o.out + ": it holds the study " +
-                       j.value("study", "?") + " at size " + j.value("size", "?"));
-    if (!text.empty() && text != j["seeds"].get<std::string>())
-      throw InputError("cannot resume " + o.out + ": --seeds " + text + " is not its --seeds " +
-                       j["seeds"].get<std::string>());
-    text = j["seeds"].get<std::string>();
+    const std::string cannot = "cannot resume " + o.out + ": ";
+    const nlohmann::json j = read_ensemble_identity(o.out, "study --seeds", cannot);
+    if (j.value("study", "") != info.name || j.value("size", "") != size)
+      throw InputError(cannot + "it holds the study " + j.value("study", "?") + " at size " +
+                       j.value("size", "?"));
+    seeds = j.value("seeds", std::vector<std::uint64_t>());
+    if (!a.seeds.empty() && parse_seeds(a.seeds, first) != seeds)
+      throw InputError(cannot + "--seeds " + a.seeds + " is not its --seeds " +
+                       j.value("seeds_option", std::string()));
+  } else {
+    seeds = parse_seeds(a.seeds, first);
   }
-  const std::vector<std::uint64_t> seeds = parse_seeds(text, lattice_seed(bed_scene(o.size)));
+  std::string seeds_option = a.seeds;
+  if (o.resume)
+    seeds_option = read_ensemble_identity(o.out, "study --seeds", "").value("seeds_option", a.seeds);
   std::vector<Options> members;
   for (std::uint64_t seed : seeds) {
     Options m = o;
-    m.out = (fs::path(o.out) / "seeds" / std::to_string(seed)).string();
+    m.out = member_dir(o.out, seed);
     m.seed = seed;
     m.resume = o.resume && fs::exists(fs::path(m.out) / "study.json");
-    m.command = o.command + " --seeds " + text + " (seed " + std::to_string(seed) + ")";
+    m.command = o.command + " --seeds " + seeds_option + " (seed " + std::to_string(seed) + ")";
     check_study_resume(info, m);  // every member before the first point
     members.push_back(std::move(m));
   }
   std::error_code ec;
-  fs::create_directories(o.out, ec);
-  if (ec) throw InputError("cannot create output folder " + o.out + ": " + ec.message());
   for (const char* f : {"ensemble.csv", "summary.md"}) fs::remove(fs::path(o.out) / f, ec);
-  if (!o.resume)
-    write_text(record.string(), nlohmann::json{{"format", 1},
-                                               {"study", info.name},
-                                               {"size", o.size == Size::Tiny ? "tiny" : "full"},
-                                               {"seeds", text},
-                                               {"command", o.command + " --seeds " + text}}
-                                        .dump(2) +
-                                    "\n");
   std::printf("study %s over %zu packings (%s size, %d worker threads%s): %s\n", info.name,
-              seeds.size(), o.size == Size::Tiny ? "tiny" : "full", resolve_threads(o.workers),
-              o.resume ? ", resumed" : "", info.title);
+              seeds.size(), size, resolve_threads(o.workers), o.resume ? ", resumed" : "",
+              info.title);
   int points = 0, failed = 0;
+  EnsembleJob job;
+  job.dir = o.out;
+  job.seeds = seeds;
+  job.identity = {{"kind", "study --seeds"}, {"study", info.name}, {"size", size},
+                  {"seeds_option", seeds_option}, {"command", o.command + " --seeds " + seeds_option}};
+  job.summary = false;  // the study's own: ensemble.csv and summary.md
+  job.member = [&](std::size_t k, std::uint64_t seed,
+                   const std::string&) -> std::optional<nlohmann::json> {
+    stop_if_asked(members[k]);  // an interrupted member stops the rest before they begin
+    std::printf("== seed %llu\n", static_cast<unsigned long long>(seed));
+    std::fflush(stdout);
+    const Report r = run_study(info, members[k]);
+    points += r.points;
+    failed += r.failed;
+    return nlohmann::json::object();
+  };
   try {
     const InterruptGuard interrupts;
-    for (const Options& m : members) {
-      std::printf("== seed %llu\n", static_cast<unsigned long long>(*m.seed));
-      std::fflush(stdout);
-      const Report r = run_study(info, m);
-      points += r.points;
-      failed += r.failed;
-    }
+    run_ensemble(job, o.resume);
   } catch (const Interrupted&) {
     say_interrupted("fluidbed study " + std::string(info.name) +
                     (o.size == Size::Tiny ? " --size tiny" : "") + " --resume " + o.out);
@@ -131,7 +134,7 @@ int study_command(const StudyArgs& a) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   };
-  if (!a.seeds.empty() || (o.resume && fs::exists(fs::path(o.out) / "ensemble.json")))
+  if (!a.seeds.empty() || (o.resume && holds_ensemble(o.out)))
     return study_ensemble(*info, o, a);
   check_study_resume(*info, o);  // before the first line: a refused resume is one line
   std::printf("study %s (%s size, %d worker threads%s): %s\n", info->name,

@@ -30,7 +30,7 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-constexpr char kPicturesTag[8] = {'F', 'L', 'B', 'P', 'I', 'C', '0', '1'};
+constexpr const char* kPicturesTag = "FLBPIC02";
 
 // Decimals of "t = 7.32 s" that tell frames `interval` apart (two at least).
 int time_decimals(double interval) {
@@ -57,26 +57,11 @@ FrameOutput::FrameOutput(std::string out_dir, FrameOptions options, const Simula
     const std::string p = (std::filesystem::path(resume_from) / "pictures.bin").string();
     std::ifstream in = open_input_file(p, "checkpoint pictures");
     BinarySource src(in, p);
-    char tag[sizeof kPicturesTag];
-    in.read(tag, sizeof tag);
-    if (!in || std::memcmp(tag, kPicturesTag, sizeof tag) != 0) src.fail("not a run's pictures");
-    saved_.stats.frames = src.get<std::int32_t>();
-    saved_.stats.vtk_files = src.get<std::int32_t>();
-    for (double* v : {&saved_.stats.render_s, &saved_.stats.png_s, &saved_.stats.video_s,
-                      &saved_.stats.vtk_s, &saved_.stats.snapshot_s, &saved_.stats.wait_s})
-      *v = src.get<double>();
-    const auto panels = src.get<std::uint64_t>();
-    if (panels > 10000) src.fail("inconsistent (montage)");
-    for (std::uint64_t k = 0; k < panels; ++k) {
-      auto snap = std::make_shared<Snapshot>();
-      load_snapshot(src, *snap);
-      saved_.montage.push_back(std::move(snap));
-    }
-    src.get_vec(saved_.vtk.times);
-    saved_.vtk.gas = src.get<std::int32_t>() != 0;
-    saved_.vtk.void_fraction = src.get<std::int32_t>() != 0;
-    saved_.video_parts = src.get<std::int32_t>();
-    if (src.get<std::int32_t>() != (bubbles_ ? 1 : 0)) src.fail("inconsistent (bubble outlines)");
+    src.tag(kPicturesTag, "run's pictures");
+    src(saved_);
+    bool outlines = false;
+    src(outlines);
+    if (outlines != (bubbles_ != nullptr)) src.fail("inconsistent (bubble outlines)");
     if (bubbles_) bubbles_->load(in, p);
     stats_ = saved_.stats;
     // Parts of the video a stopped process wrote after its last checkpoint are written again.
@@ -215,20 +200,12 @@ void FrameOutput::checkpoint(const std::string& folder) {
   }
   const std::string p = (std::filesystem::path(folder) / "pictures.bin").string();
   std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out.write(kPicturesTag, sizeof kPicturesTag);
-  put(out, static_cast<std::int32_t>(s.stats.frames));
-  put(out, static_cast<std::int32_t>(s.stats.vtk_files));
+  BinarySink sink(out);
+  sink.tag(kPicturesTag);
   // The engine thread's own costs are its, up to now.
-  for (double v : {s.stats.render_s, s.stats.png_s, s.stats.video_s, s.stats.vtk_s,
-                   stats_.snapshot_s, stats_.wait_s})
-    put(out, v);
-  put(out, static_cast<std::uint64_t>(s.montage.size()));
-  for (const auto& snap : s.montage) save_snapshot(out, *snap);
-  put_vec(out, s.vtk.times);
-  put(out, static_cast<std::int32_t>(s.vtk.gas));
-  put(out, static_cast<std::int32_t>(s.vtk.void_fraction));
-  put(out, static_cast<std::int32_t>(s.video_parts));
-  put(out, static_cast<std::int32_t>(bubbles_ ? 1 : 0));
+  s.stats.snapshot_s = stats_.snapshot_s;
+  s.stats.wait_s = stats_.wait_s;
+  sink(s, bubbles_ != nullptr);
   if (bubbles_) bubbles_->save(out);
   out.flush();
   if (!out) throw InputError("cannot write " + p);

@@ -12,11 +12,13 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "analysis/bubbles.hpp"
+#include "core/binary_io.hpp"
 #include "io/vtk_writer.hpp"
-#include "cli/commands.hpp"
+#include "output/output_args.hpp"
 #include "render/render_settings.hpp"
 #include "sim/simulation.hpp"
 #include "sim/snapshot.hpp"
@@ -88,6 +90,27 @@ class FrameOutput {
     std::vector<std::shared_ptr<const Snapshot>> montage;
     VtkSeries::Written vtk;
     int video_parts = 0;
+
+    // pictures.bin's fields (core/binary_io.hpp), the montage's snapshots in their own format.
+    template <class Archive>
+    void fields(Archive& a) {
+      FrameStats& f = stats;
+      a(f.frames, f.vtk_files, f.render_s, f.png_s, f.video_s, f.vtk_s, f.snapshot_s, f.wait_s);
+      std::uint64_t panels = montage.size();
+      a(panels);
+      if constexpr (std::is_same_v<Archive, BinarySource>) {
+        if (panels > 10000) a.fail("inconsistent (montage)");
+        montage.clear();
+        for (std::uint64_t k = 0; k < panels; ++k) {
+          auto snap = std::make_shared<Snapshot>();
+          load_snapshot(a, *snap);
+          montage.push_back(std::move(snap));
+        }
+      } else {
+        for (const auto& snap : montage) save_snapshot(a.stream(), *snap);
+      }
+      a(vtk.times, vtk.gas, vtk.void_fraction, video_parts);
+    }
   };
   struct Due {
     std::int64_t step;

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "chart/chart.hpp"
-#include "cli/commands.hpp"
+#include "render/asset_dir.hpp"
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "core/steps.hpp"
@@ -16,7 +16,7 @@ namespace fluidbed::app {
 namespace {
 
 const chart::Font& font() {
-  static const chart::Font f = chart::Font::load_default(asset_dir());
+  static const chart::Font f = chart::Font::load_default(render::asset_dir());
   return f;
 }
 
@@ -155,34 +155,25 @@ void TrajectoryRecorder::observe(const Simulation& sim) {
   }
 }
 
-void TrajectoryRecorder::save(std::ostream& out) const {
-  put(out, every_);
-  put(out, static_cast<std::uint64_t>(tracks_.size()));
-  for (const Trajectory& tr : tracks_) {
-    put(out, static_cast<std::int32_t>(tr.id));
-    put_vec(out, tr.t);
-    put_vec(out, tr.x);
-    put_vec(out, tr.y);
-  }
-}
+void TrajectoryRecorder::save(BinarySink& out) const { out(every_, tracks_); }
 
 void TrajectoryRecorder::restore(BinarySource& in, std::size_t particles) {
-  if (in.get<std::int64_t>() != every_) in.fail("inconsistent (trajectory interval)");
-  if (in.get<std::uint64_t>() != tracks_.size()) in.fail("inconsistent (tracked particles)");
-  for (Trajectory& tr : tracks_) {
-    tr.id = in.get<std::int32_t>();
-    if (tr.id < 0 || static_cast<std::size_t>(tr.id) >= particles)
-      in.fail("inconsistent (tracked particle id)");
-    in.get_vec(tr.t);
-    in.get_vec(tr.x, static_cast<std::int64_t>(tr.t.size()));
-    in.get_vec(tr.y, static_cast<std::int64_t>(tr.t.size()));
-  }
+  const std::int64_t every = every_;
+  const std::size_t count = tracks_.size();
+  in(every_, tracks_);
+  if (every_ != every) in.fail("inconsistent (trajectory interval)");
+  if (tracks_.size() != count) in.fail("inconsistent (tracked particles)");
+  for (const Trajectory& tr : tracks_)
+    if (tr.id < 0 || static_cast<std::size_t>(tr.id) >= particles || tr.x.size() != tr.t.size() ||
+        tr.y.size() != tr.t.size())
+      in.fail("inconsistent (tracked particle)");
 }
 
 void save_tracks(const std::string& folder, const TrajectoryRecorder& r) {
   const std::string p = (std::filesystem::path(folder) / "tracks.bin").string();
   std::ofstream f(p, std::ios::binary | std::ios::trunc);
-  r.save(f);
+  BinarySink sink(f);
+  r.save(sink);
   f.flush();
   if (!f) throw InputError("cannot write " + p);
 }

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/binary_io.hpp"
-#include "run/run.hpp"
-#include "run/sweep.hpp"
+#include "run/run_loop.hpp"
+#include "run/velocity_sweep.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed::app {
@@ -19,6 +19,11 @@ namespace fluidbed::app {
 struct Trajectory {
   int id = 0;
   std::vector<double> t, x, y;  // s, m, m
+
+  template <class Archive>
+  void fields(Archive& a) {
+    a(id, t, x, y);
+  }
 };
 
 // The particles nearest to the given points (m) at the start of a run.
@@ -34,7 +39,7 @@ class TrajectoryRecorder {
   void observe(const Simulation& sim);
   const std::vector<Trajectory>& tracks() const { return tracks_; }
   // The tracks so far (ids included) as bytes and back, for a run's checkpoint.
-  void save(std::ostream& out) const;
+  void save(BinarySink& out) const;
   // InputError (naming the file) unless the tracks are as many as this recorder's and their ids
   // below `particles`.
   void restore(BinarySource& in, std::size_t particles);
@@ -51,10 +56,6 @@ void save_tracks(const std::string& folder, const TrajectoryRecorder& r);
 void restore_tracks(const std::string& folder, TrajectoryRecorder& r, std::size_t particles);
 
 void plot_sweep(const std::string& path, const SweepResult& r, const std::string& scene);
-// sweep.csv, summary.json (with umf_m_s) and sweep.png in the sweep's output folder.
-void write_sweep_outputs(const SweepResult& r, const SweepOptions& o, const std::string& scene);
-// The sweep's summary.json as written by write_sweep_outputs.
-nlohmann::json sweep_summary(const SweepResult& r, const SweepOptions& o, const std::string& scene);
 
 // An ensemble of sweeps (`sweep --seeds`): each seed's two branches faint, the mean over the
 // seeds at each velocity bold, U_mf's ensemble mean as a line and mean +- one standard deviation

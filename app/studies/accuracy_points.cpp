@@ -11,6 +11,7 @@
 
 #include "analysis/bounce_tracker.hpp"
 #include "analysis/mechanical_energy.hpp"
+#include "core/hash.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "scene/scene_loader.hpp"

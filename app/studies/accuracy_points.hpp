@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "scene/settings.hpp"
-#include "studies/study.hpp"
+#include "studies/common.hpp"
 
 namespace fluidbed::app::study::accuracy {
 

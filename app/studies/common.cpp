@@ -13,16 +13,18 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "cli/commands.hpp"
+#include "render/asset_dir.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/hash.hpp"
 #include "core/roots.hpp"
 #include "core/threads.hpp"
+#include "run/checkpoint.hpp"
 #include "run/ensemble.hpp"
+#include "run/run_folder.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
-#include "studies/study.hpp"
+#include "studies/common.hpp"
 
 namespace fluidbed::app::study {
 namespace fs = std::filesystem;
@@ -74,6 +76,9 @@ const char* size_name(Size s) { return s == Size::Tiny ? "tiny" : "full"; }
 
 fs::path points_dir(const Options& o) { return fs::path(o.out) / "points"; }
 
+// A point's name in the folder: the hash of what defines it.
+std::string point_key(const nlohmann::json& what) { return hex_digest(what.dump()); }
+
 }  // namespace
 
 void check_study_resume(const Info& info, const Options& o) {
@@ -111,7 +116,7 @@ Report run_study(const Info& info, const Options& o) {
                               {"command", o.command}};
     write_text((fs::path(o.out) / "study.json").string(), j.dump(2) + "\n");
   }
-  for (const char* f : {"study.csv", "summary.md", "report.json"})  // a finished study's
+  for (const char* f : {"study.csv", "summary.md", "status.json"})  // a finished study's
     fs::remove(fs::path(o.out) / f, ec);
   fs::create_directories(points_dir(o), ec);  // before the points' threads write into it
   const auto start = std::chrono::steady_clock::now();
@@ -137,21 +142,23 @@ Report run_study(const Info& info, const Options& o) {
   md += "## What to choose\n\n" + r.advice + "\n\n## Charts\n\n";
   for (const auto& c : r.charts) md += "![" + c + "](" + c + ")\n\n";
   write_text((fs::path(o.out) / "summary.md").string(), md);
-  const nlohmann::json j = {{"name", r.name},     {"title", r.title},     {"charts", r.charts},
-                            {"findings", r.findings}, {"advice", r.advice}, {"points", r.points},
-                            {"failed", r.failed}, {"wall_time_s", r.wall_time},
-                            {"size", size_name(o.size)}};
-  write_text((fs::path(o.out) / "report.json").string(), j.dump(2) + "\n");
+  // The finished marker, last (run/run_folder.hpp's, with the report as its result).
+  const nlohmann::json result = {
+      {"name", r.name},         {"title", r.title},   {"charts", r.charts},
+      {"findings", r.findings}, {"advice", r.advice}, {"points", r.points},
+      {"failed", r.failed},     {"size", size_name(o.size)}};
+  const nlohmann::json marker = {{"status", "completed"}, {"finished", true},
+                                 {"wall_time_s", r.wall_time}, {"result", result}};
+  write_text((fs::path(o.out) / "status.json").string(), marker.dump(2) + "\n");
   return r;
 }
 
 std::optional<Report> finished_study(const std::string& dir, Size size) {
-  std::ifstream in(fs::path(dir) / "report.json");
-  if (!in) return std::nullopt;
+  const std::optional<nlohmann::json> status = read_run_status(dir);
+  if (!status || status->value("status", std::string()) != "completed") return std::nullopt;
   try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.at("size").get<std::string>() != size_name(size))
-      return std::nullopt;
+    const nlohmann::json& j = status->at("result");
+    if (j.at("size").get<std::string>() != size_name(size)) return std::nullopt;
     Report r;
     r.name = j.at("name").get<std::string>();
     r.title = j.at("title").get<std::string>();
@@ -160,7 +167,7 @@ std::optional<Report> finished_study(const std::string& dir, Size size) {
     r.advice = j.at("advice").get<std::string>();
     r.points = j.at("points").get<int>();
     r.failed = j.at("failed").get<int>();
-    r.wall_time = j.at("wall_time_s").get<double>();
+    r.wall_time = status->at("wall_time_s").get<double>();
     return r;
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;
@@ -176,23 +183,6 @@ double thread_cpu_seconds() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-namespace {
-std::string hex_digest(const std::string& bytes) {
-  Fnv1a h;
-  h.bytes(bytes.data(), bytes.size());
-  char b[20];
-  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h.digest()));
-  return b;
-}
-}  // namespace
-
-std::string file_digest(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "";
-  return hex_digest(
-      std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
 }
 
 void stop_if_asked(const Options& o) {
@@ -212,7 +202,7 @@ RunResult run_to_end(const Options& o, Simulation& sim, RunOptions options) {
 nlohmann::json stored_point(const Options& o, const nlohmann::json& what, bool reuse,
                             const std::function<nlohmann::json()>& compute) {
   const std::string defined = what.dump();
-  const fs::path file = points_dir(o) / (hex_digest(defined) + ".json");
+  const fs::path file = points_dir(o) / (point_key(what) + ".json");
   if (std::ifstream in(file); reuse && !o.out.empty() && in) {
     try {
       const nlohmann::json j = nlohmann::json::parse(in);
@@ -249,19 +239,46 @@ double number_at(const nlohmann::json& a, std::size_t k) {
   return a.at(k).is_number() ? a[k].get<double>() : NAN;
 }
 
-PointRun measure_point(const Options& o, const Settings& s, double until, RunOptions options) {
+// A point's run: in the study's folder (points/KEY/, a run in a folder with its checkpoints, so
+// that a stopped study continues the point where it stopped), or in memory without one.
+PointRun measure_point(const Options& o, const fs::path& dir, const Settings& s, double until,
+                       bool bubbles) {
   PointRun p;
   const auto start = std::chrono::steady_clock::now();
-  try {
-    Simulation sim(s);
-    options.until = until;
-    const double cpu0 = thread_cpu_seconds();
-    p.result = run_to_end(o, sim, options);
-    p.cpu = thread_cpu_seconds() - cpu0;
-    p.ok = true;
-  } catch (const SimulationFailure& e) {
-    p.error = e.what();
-    p.kind = failure_kind(p.error);
+  if (o.out.empty()) {
+    try {
+      Simulation sim(s);
+      RunOptions options;
+      options.until = until;
+      options.bubbles = bubbles;
+      const double cpu0 = thread_cpu_seconds();
+      p.result = run_to_end(o, sim, options);
+      p.cpu = thread_cpu_seconds() - cpu0;
+      p.ok = true;
+    } catch (const SimulationFailure& e) {
+      p.error = e.what();
+      p.kind = failure_kind(p.error);
+    }
+  } else {
+    RunJob job;
+    job.scene = s;
+    job.until = until;
+    job.bubbles = bubbles;
+    RunControl control;
+    std::error_code ec;
+    if (run_ended(dir.string())) fs::remove_all(dir, ec);  // its result was not kept: again
+    control.resume = has_checkpoint(dir.string());
+    control.stop = o.stop;
+    RunEnd end = run_in_folder(dir.string(), job, control);
+    if (end.how == RunEnd::How::stopped) throw Interrupted();
+    p.ok = end.finished();
+    p.cpu = end.cpu;
+    if (p.ok) {
+      p.result = std::move(end.result);
+    } else {
+      p.error = end.error;
+      p.kind = failure_kind(p.error);
+    }
   }
   p.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return p;
@@ -320,13 +337,18 @@ PointRun point_run_from_json(const nlohmann::json& j) {
   return p;
 }
 
-PointRun run_point(const Options& o, const Settings& s, double until, RunOptions options) {
+PointRun run_point(const Options& o, const Settings& s, double until, bool bubbles) {
   nlohmann::json what = run_definition("run", s, until);
-  what["cfl_limit"] = options.cfl_limit;
-  what["porosity_min"] = options.porosity_min;
-  what["bubbles"] = options.bubbles;
-  return point_run_from_json(
-      stored_point(o, what, true, [&] { return point_run_json(measure_point(o, s, until, options)); }));
+  const RunOptions checks;  // the run's own checks, at their defaults (part of what defines it)
+  what["cfl_limit"] = checks.cfl_limit;
+  what["porosity_min"] = checks.porosity_min;
+  what["bubbles"] = bubbles;
+  const fs::path dir = points_dir(o) / point_key(what);
+  PointRun p = point_run_from_json(stored_point(
+      o, what, true, [&] { return point_run_json(measure_point(o, dir, s, until, bubbles)); }));
+  std::error_code ec;
+  fs::remove_all(dir, ec);  // the point's record is kept: its run's folder is no longer needed
+  return p;
 }
 
 std::string failure_kind(const std::string& m) {
@@ -387,7 +409,7 @@ Settings bed_scene(Size size, const std::vector<std::string>& overrides) {
            "particles.fill_height=0.12", "particles.packing_time=0.3", "gas.cells_x=6",
            "gas.cells_y=15"};
   all.insert(all.end(), overrides.begin(), overrides.end());
-  return load_scene(asset_dir() + "/scenes/xu_yu_1997.toml", all);
+  return load_scene(render::asset_dir() + "/scenes/xu_yu_1997.toml", all);
 }
 
 Settings bed_scene(const Options& o, const std::vector<std::string>& overrides) {
@@ -471,35 +493,13 @@ std::string Table::csv() const {
   return out;
 }
 
-std::string num(double v) {
-  if (!std::isfinite(v)) return "";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-
-std::string fmt(const char* format, double v) {
-  char b[128];
-  std::snprintf(b, sizeof b, format, v);
-  return b;
-}
-
-std::string csv_text(std::string s) {
-  for (char& c : s)
-    if (c == '\n') c = ' ';
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 void write_text(const std::string& path, const std::string& text) {
   write_file_atomically(path, [&](std::ostream& o) { o << text; });
 }
 
 namespace {
 const chart::Font& font() {
-  static const chart::Font f = chart::Font::load_default(asset_dir());
+  static const chart::Font f = chart::Font::load_default(render::asset_dir());
   return f;
 }
 }  // namespace

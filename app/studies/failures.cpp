@@ -9,7 +9,7 @@
 
 #include "core/errors.hpp"
 #include "run/packed_bed.hpp"
-#include "studies/study.hpp"
+#include "studies/common.hpp"
 
 namespace fluidbed::app::study {
 namespace {

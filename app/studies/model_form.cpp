@@ -12,9 +12,10 @@
 #include "core/errors.hpp"
 #include "core/threads.hpp"
 #include "output/plots.hpp"
+#include "output/sweep_outputs.hpp"
 #include "run/packed_bed.hpp"
-#include "run/sweep.hpp"
-#include "studies/study.hpp"
+#include "run/velocity_sweep.hpp"
+#include "studies/common.hpp"
 
 namespace fluidbed::app::study {
 namespace {

@@ -11,7 +11,7 @@
 #include "core/errors.hpp"
 #include "run/packed_bed.hpp"
 #include "sim/simulation.hpp"
-#include "studies/study.hpp"
+#include "studies/common.hpp"
 
 namespace fluidbed::app::study {
 namespace {

@@ -10,11 +10,11 @@
 #include <iterator>
 #include <sstream>
 
-#include "cli/commands.hpp"
+#include "render/asset_dir.hpp"
 #include "dem/contact_law.hpp"
 #include "run/packed_bed.hpp"
 #include "scene/scene_loader.hpp"
-#include "studies/study.hpp"
+#include "studies/common.hpp"
 
 namespace fluidbed::app::study {
 namespace {
@@ -115,7 +115,7 @@ Teaching measure(const Options& o) {
   m.averaging = tiny ? 0.3 : 1.0;
   // Every point shares the teaching scene's jet and its screen over the top (the ways
   // teaching.toml differs from the paper's scene besides the knobs compared here).
-  const Settings scene = load_scene(asset_dir() + "/scenes/teaching.toml");
+  const Settings scene = load_scene(render::asset_dir() + "/scenes/teaching.toml");
   const std::vector<std::string> shared = {
       std::string("domain.top_wall=") + (scene.domain.top_wall ? "true" : "false"),
       "inlet.superficial_velocity=" + exact(scene.inlet.superficial_velocity),
@@ -165,11 +165,9 @@ Teaching measure(const Options& o) {
       m.scene_point = static_cast<int>(i);
   }
 
-  RunOptions with_bubbles;
-  with_bubbles.bubbles = true;
   m.pts = RunPool(o.workers).map<TeachingPoint>(pts.size(), [&](std::size_t i) {
     TeachingPoint p = pts[i];
-    p.run = run_point(o, scenes[i], m.until, with_bubbles);
+    p.run = run_point(o, scenes[i], m.until, /*bubbles=*/true);
     if (p.run.ok) {
       for (std::size_t k = 0; k < kN; ++k) {
         const Figure& f = kFigures[k];

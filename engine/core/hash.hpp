@@ -3,7 +3,11 @@
 // count give the same bits).
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace fluidbed {
@@ -30,5 +34,22 @@ class Fnv1a {
  private:
   std::uint64_t h_ = 14695981039346656037ULL;
 };
+
+// The FNV-1a hash of some bytes as 16 hex digits.
+inline std::string hex_digest(const std::string& bytes) {
+  Fnv1a h;
+  h.bytes(bytes.data(), bytes.size());
+  char b[20];
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h.digest()));
+  return b;
+}
+
+// The same of a file's bytes; empty when it cannot be read.
+inline std::string file_digest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  return hex_digest(
+      std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+}
 
 }  // namespace fluidbed

@@ -2,7 +2,7 @@
 // Independent runs side by side: `workers` threads take tasks from a shared counter, each task
 // on one thread, so each simulation keeps to one core and the results do not depend on how many
 // threads there are. The first exception a task throws is rethrown once every thread finished.
-// Used by the sweep (run/sweep.cpp), the studies and reproduce.
+// Used by the sweep (run/velocity_sweep.cpp), the studies and reproduce.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>

@@ -13,7 +13,7 @@
 #include "core/binary_io.hpp"
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 
 namespace fluidbed {
 
@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr char kRunTag[8] = {'F', 'L', 'B', 'R', 'U', 'N', '0', '1'};
+constexpr const char* kRunTag = "FLBRUN02";
 static_assert(std::is_trivially_copyable_v<CouplingDiagnostics>);
 
 fs::path folder_of(const std::string& run_dir) {
@@ -45,23 +45,23 @@ void write_text(const fs::path& p, const std::string& text) {
   if (!out) throw InputError("cannot write " + p.string());
 }
 
+// run.bin's head: what the simulation's state file does not hold.
 struct RunHeader {
   double wall = 0.0;
   std::uint64_t hash = 0;
   CouplingDiagnostics coupling;
   EnergyLedger ledger;
+
+  template <class Archive>
+  void fields(Archive& a) {
+    a(wall, hash, coupling, ledger);
+  }
 };
 
 RunHeader read_header(BinarySource& src) {
-  char tag[sizeof kRunTag];
-  src.stream().read(tag, sizeof tag);
-  if (!src.stream() || std::memcmp(tag, kRunTag, sizeof tag) != 0)
-    src.fail("not a run checkpoint's");
+  src.tag(kRunTag, "run checkpoint");
   RunHeader h;
-  h.wall = src.get<double>();
-  h.hash = src.get<std::uint64_t>();
-  h.coupling = src.get<CouplingDiagnostics>();
-  h.ledger = src.get<EnergyLedger>();
+  src(h);
   return h;
 }
 
@@ -81,12 +81,11 @@ void write_checkpoint(const std::string& run_dir, const Simulation& sim,
   {
     const fs::path p = tmp / "run.bin";
     std::ofstream out(p, std::ios::binary | std::ios::trunc);
-    out.write(kRunTag, sizeof kRunTag);
-    put(out, wall);
-    put(out, sim.state_hash());
-    put(out, sim.coupling_diagnostics());
-    put(out, sim.dem().energy_ledger());
-    recorder.save(out);
+    BinarySink sink(out);
+    sink.tag(kRunTag);
+    RunHeader h{wall, sim.state_hash(), sim.coupling_diagnostics(), sim.dem().energy_ledger()};
+    sink(h);
+    recorder.save(sink);
     out.flush();
     if (!out) throw InputError("cannot write " + p.string());
   }
@@ -147,6 +146,10 @@ Checkpoint read_checkpoint(const std::string& run_dir) {
     c.options = nlohmann::json::parse(in, nullptr, false);
     if (c.options.is_discarded() || !c.options.is_object())
       throw InputError(p + ": not a checkpoint's options (JSON object)");
+  }
+  if (std::ifstream in(dir / "job.json"); in) {
+    c.job = nlohmann::json::parse(in, nullptr, false);
+    if (c.job.is_discarded()) c.job = nullptr;
   }
   const std::string p = (dir / "run.bin").string();
   std::ifstream in = open_input_file(p, "checkpoint");

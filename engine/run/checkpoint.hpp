@@ -13,7 +13,8 @@
 //   options.json    how the run was started: scene file, --set lines, end time, threads
 //   where.json      for reading: the simulated time and step reached, the particle steps since
 //                   the last gas step, the wall time so far
-// and what the caller adds (the run's pictures and trajectories: cli/run.cpp).
+// and what the caller adds (run/run_folder.hpp: job.json, what decides the run besides its
+// scene; the outputs' state, such as the pictures' and the tracked particles').
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -27,6 +28,7 @@ struct Checkpoint {
   std::string folder;          // DIR/checkpoint
   std::string scene_toml;      // scene.toml
   nlohmann::json options;      // options.json
+  nlohmann::json job;          // job.json (null when the checkpoint has none)
   std::string timeseries_csv;  // timeseries.csv: the rows so far, header included
   double wall = 0.0;           // s of wall time the run took up to the checkpoint
 };

@@ -5,9 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 
+#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/run_pool.hpp"
+#include "core/text_format.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/placement.hpp"
 
@@ -87,6 +92,23 @@ Settings with_seed(Settings scene, std::uint64_t seed) {
   return scene;
 }
 
+SampleStatistics sample_statistics(const std::vector<double>& v) {
+  SampleStatistics s;
+  s.n = static_cast<int>(v.size());
+  if (v.empty()) return s;
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  s.mean = sum / s.n;
+  s.min = *std::min_element(v.begin(), v.end());
+  s.max = *std::max_element(v.begin(), v.end());
+  if (s.n > 1) {
+    double sq = 0.0;
+    for (double x : v) sq += (x - s.mean) * (x - s.mean);
+    s.std = std::sqrt(sq / (s.n - 1));
+  }
+  return s;
+}
+
 nlohmann::json ensemble_statistics(const std::vector<nlohmann::json>& summaries) {
   std::map<std::string, std::vector<double>> values;
   for (const auto& s : summaries) {
@@ -96,18 +118,12 @@ nlohmann::json ensemble_statistics(const std::vector<nlohmann::json>& summaries)
   }
   nlohmann::json out = nlohmann::json::object();
   for (const auto& [k, v] : values) {
-    const double n = static_cast<double>(v.size());
-    double sum = 0.0;
-    for (double x : v) sum += x;
-    const double mean = sum / n;
-    double sq = 0.0;
-    for (double x : v) sq += (x - mean) * (x - mean);
-    out[k] = {
-        {"mean", mean},
-        {"std", v.size() > 1 ? nlohmann::json(std::sqrt(sq / (n - 1.0))) : nlohmann::json(nullptr)},
-        {"min", *std::min_element(v.begin(), v.end())},
-        {"max", *std::max_element(v.begin(), v.end())},
-        {"n", v.size()}};
+    const SampleStatistics s = sample_statistics(v);
+    out[k] = {{"mean", s.mean},
+              {"std", s.n > 1 ? nlohmann::json(s.std) : nlohmann::json(nullptr)},
+              {"min", s.min},
+              {"max", s.max},
+              {"n", v.size()}};
   }
   return out;
 }
@@ -141,16 +157,68 @@ nlohmann::json ensemble_summary(const std::vector<nlohmann::json>& summaries,
 }
 
 std::string ensemble_line(const nlohmann::json& e, const char* f) {
-  auto num = [&](double v) {
-    char b[64];
-    std::snprintf(b, sizeof b, f, v);
-    return std::string(b);
-  };
+  auto num = [&](double v) { return format_number(f, v); };
   std::string s = num(e.at("mean").get<double>());
   s += e.at("std").is_number() ? " +- " + num(e.at("std").get<double>()) : " (no spread: one seed)";
   s += " (" + num(e.at("min").get<double>()) + " to " + num(e.at("max").get<double>()) +
        ", n = " + std::to_string(e.at("n").get<std::size_t>()) + ")";
   return s;
+}
+
+std::string member_dir(const std::string& dir, std::uint64_t seed) {
+  return (std::filesystem::path(dir) / "seeds" / std::to_string(seed)).string();
+}
+
+EnsembleResult run_ensemble(const EnsembleJob& job, bool resume) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(job.dir, ec);
+  if (ec) throw InputError("cannot create output folder " + job.dir + ": " + ec.message());
+  const fs::path dir(job.dir);
+  fs::remove(dir / "summary.json", ec);  // only a finished ensemble has one
+  if (!resume || !fs::exists(dir / "ensemble.json")) {  // a resumed one not begun has none yet
+    nlohmann::json identity = {{"format", 1}};
+    for (const auto& [key, value] : job.identity.items()) identity[key] = value;
+    identity["seeds"] = job.seeds;
+    write_file_atomically((dir / "ensemble.json").string(),
+                          [&](std::ostream& o) { o << identity.dump(2) << "\n"; });
+  }
+  EnsembleResult r;
+  r.summaries.assign(job.seeds.size(), nullptr);
+  std::vector<int> done(job.seeds.size(), 0);
+  std::vector<std::function<void()>> tasks;
+  for (std::size_t k = 0; k < job.seeds.size(); ++k)
+    tasks.push_back([&, k] {
+      if (std::optional<nlohmann::json> s =
+              job.member(k, job.seeds[k], member_dir(job.dir, job.seeds[k]))) {
+        r.summaries[k] = std::move(*s);
+        done[k] = 1;
+      }
+    });
+  RunPool(std::max(1, job.side_by_side)).run(tasks);
+  r.complete = std::find(done.begin(), done.end(), 0) == done.end();
+  if (r.complete && job.summary) {
+    r.summary = ensemble_summary(r.summaries, job.seeds);
+    write_file_atomically((dir / "summary.json").string(),
+                          [&](std::ostream& o) { o << r.summary.dump(2) << "\n"; });
+  }
+  return r;
+}
+
+nlohmann::json read_ensemble_identity(const std::string& dir, const std::string& kind,
+                                      const std::string& head) {
+  const std::string path = (std::filesystem::path(dir) / "ensemble.json").string();
+  std::ifstream in(path);
+  if (!in) throw InputError(head + "it holds no ensemble (no " + path + ")");
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || j.value("format", 0) != 1 ||
+      j.value("kind", std::string()) != kind)
+    throw InputError(head + path + " is not the record of a " + kind + " ensemble");
+  return j;
+}
+
+bool holds_ensemble(const std::string& dir) {
+  return std::filesystem::is_regular_file(std::filesystem::path(dir) / "ensemble.json");
 }
 
 }  // namespace fluidbed

@@ -7,7 +7,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 
 namespace fluidbed {
 
@@ -58,7 +58,8 @@ void LiveRunFolder::row(const TimeseriesRow& r) {
   }
 }
 
-void LiveRunFolder::status(const char* state, const std::string& reason) {
+void LiveRunFolder::status(const char* state, const std::string& reason,
+                           const nlohmann::json& extra) {
   nlohmann::json j;
   j["status"] = state;
   j["scene"] = scene_;
@@ -72,15 +73,16 @@ void LiveRunFolder::status(const char* state, const std::string& reason) {
   } else {
     j["finished"] = std::string(state) == "completed";
   }
+  for (const auto& [key, value] : extra.items()) j[key] = value;
   write_file_atomically((fs::path(dir_) / "status.json").string(),
                         [&](std::ostream& o) { o << j.dump(2) << "\n"; });
 }
 
-void LiveRunFolder::completed(double t) {
+void LiveRunFolder::completed(double t, const nlohmann::json& extra) {
   pending_.clear();  // the finished run has rewritten timeseries.csv whole
   close();
   t_ = t;
-  status("completed", "");
+  status("completed", "", extra);
 }
 
 void LiveRunFolder::interrupted(double t, const std::string& reason) {
@@ -89,9 +91,9 @@ void LiveRunFolder::interrupted(double t, const std::string& reason) {
   status("interrupted", reason);
 }
 
-void LiveRunFolder::failed(const std::string& reason) {
+void LiveRunFolder::failed(const std::string& reason, const nlohmann::json& extra) {
   close();
-  status("failed", reason);
+  status("failed", reason, extra);
 }
 
 }  // namespace fluidbed

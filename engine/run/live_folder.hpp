@@ -3,9 +3,10 @@
 // failure, kill -9, a power cut) leaves what it computed and says that it did not finish:
 //   DIR/status.json     {"status": "running" | "completed" | "interrupted" | "failed",
 //                        "finished": bool, "t_s": the timeseries' last time, "reason", and "pid"
-//                        while running}, replaced atomically at each change and each flush; a
-//                        folder whose status says "running" but whose process is gone holds an
-//                        unfinished run (killed, crashed);
+//                        while running; the run's end adds its wall time, job digest and
+//                        result (run/run_folder.hpp: the finished marker)}, replaced atomically at
+//                        each change and each flush; a folder whose status says "running" but
+//                        whose process is gone holds an unfinished run (killed, crashed);
 //   DIR/timeseries.csv  the rows appended as they are recorded, flushed to the system at least
 //                        every flush_interval wall seconds; the finished run rewrites it whole
 //                        (the same bytes) with its other files.
@@ -13,6 +14,7 @@
 // summary that is not this run's finished result.
 #include <chrono>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "run/recorder.hpp"
@@ -34,13 +36,15 @@ class LiveRunFolder {
 
   // One more row of the timeseries.
   void row(const TimeseriesRow& r);
-  // The run's end, after its outputs are written (completed), or without them.
-  void completed(double t);
+  // The run's end, after its outputs are written (completed), or without them; `extra`'s keys
+  // go into status.json beside the status.
+  void completed(double t, const nlohmann::json& extra = nlohmann::json::object());
   void interrupted(double t, const std::string& reason);
-  void failed(const std::string& reason);
+  void failed(const std::string& reason, const nlohmann::json& extra = nlohmann::json::object());
 
  private:
-  void status(const char* state, const std::string& reason);
+  void status(const char* state, const std::string& reason,
+              const nlohmann::json& extra = nlohmann::json::object());
   void flush();
   void close();
 

@@ -233,66 +233,42 @@ PowerSpectrum RunRecorder::dp_spectrum() const {
 }
 
 namespace {
-constexpr char kRecorderTag[8] = {'F', 'L', 'B', 'R', 'E', 'C', '0', '4'};
+constexpr const char* kRecorderTag = "FLBREC05";
 static_assert(std::is_trivially_copyable_v<TimeseriesRow>);
 static_assert(std::is_trivially_copyable_v<EnergyBudget> &&
               std::is_trivially_copyable_v<EnergyLedger>);
 }  // namespace
 
-void RunRecorder::save(std::ostream& out) const {
-  out.write(kRecorderTag, sizeof kRecorderTag);
-  for (std::int64_t v : {first_step_, last_step_, row_every_, dp_samples_, gas_steps_, simple_sum_,
-                         pressure_sum_, not_converged_, split_gas_steps_, fluid_samples_,
-                         bed_height_samples_})
-    put(out, v);
-  for (double v : {startup_, max_overlap_, max_overlap_after_, ke_peak_, dp_sum_, dp_sq_, dp_max_,
-                   dp_max_time_, residual_max_, cfl_max_, third_law_max_, fluid_fx_sum_,
-                   fluid_fy_sum_, bed_height_sum_})
-    put(out, v);
-  for (std::int32_t v :
-       {static_cast<std::int32_t>(bed_), static_cast<std::int32_t>(has_gas_),
-        static_cast<std::int32_t>(last_gas_steps_), static_cast<std::int32_t>(simple_max_),
-        static_cast<std::int32_t>(bounces_.has_value()),
-        static_cast<std::int32_t>(bubbles_.has_value())})
-    put(out, v);
-  put(out, energy_start_);
-  put(out, ledger_start_);
-  put_vec(out, rows_);
-  put(out, pending_);
-  if (bounces_) bounces_->save(out);
-  if (bubbles_) bubbles_->save(out);
+template <class Archive>
+void RunRecorder::fields(Archive& a) {
+  a(first_step_, last_step_, row_every_, startup_, bed_, has_gas_, energy_start_, ledger_start_,
+    rows_, pending_);
+  a(max_overlap_, max_overlap_after_, ke_peak_, dp_sum_, dp_sq_, dp_max_, dp_max_time_,
+    dp_samples_);
+  a(last_gas_steps_, gas_steps_, simple_sum_, pressure_sum_, not_converged_, split_gas_steps_,
+    simple_max_, residual_max_, cfl_max_, third_law_max_, fluid_fx_sum_, fluid_fy_sum_,
+    fluid_samples_, bed_height_sum_, bed_height_samples_);
+}
+
+void RunRecorder::save(BinarySink& out) const {
+  out.tag(kRecorderTag);
+  const_cast<RunRecorder*>(this)->fields(out);
+  out(bounces_.has_value(), bubbles_.has_value());
+  if (bounces_) bounces_->save(out.stream());
+  if (bubbles_) bubbles_->save(out.stream());
 }
 
 void RunRecorder::restore(BinarySource& in) {
-  char tag[sizeof kRecorderTag];
-  in.stream().read(tag, sizeof tag);
-  if (in.stream() && std::memcmp(tag, kRecorderTag, 6) == 0 &&
-      std::memcmp(tag, kRecorderTag, sizeof tag) != 0)
-    in.fail("written by another version of fluidbed (recorder " + std::string(tag + 6, 2) +
-            ", this one reads " + std::string(kRecorderTag + 6, 2) + "): run it again from its start");
-  if (!in.stream() || std::memcmp(tag, kRecorderTag, sizeof tag) != 0)
-    in.fail("not a run recorder's");
+  in.tag(kRecorderTag, "run recorder");
+  // The recorder must be built for the same run (scene and end step) as the saved one.
   const std::int64_t last_step = last_step_, row_every = row_every_;
-  for (std::int64_t* v :
-       {&first_step_, &last_step_, &row_every_, &dp_samples_, &gas_steps_, &simple_sum_,
-        &pressure_sum_, &not_converged_, &split_gas_steps_, &fluid_samples_, &bed_height_samples_})
-    *v = in.get<std::int64_t>();
-  for (double* v : {&startup_, &max_overlap_, &max_overlap_after_, &ke_peak_, &dp_sum_, &dp_sq_,
-                    &dp_max_, &dp_max_time_, &residual_max_, &cfl_max_, &third_law_max_,
-                    &fluid_fx_sum_, &fluid_fy_sum_, &bed_height_sum_})
-    *v = in.get<double>();
-  const bool bed = in.get<std::int32_t>() != 0, has_gas = in.get<std::int32_t>() != 0;
-  last_gas_steps_ = in.get<std::int32_t>();
-  simple_max_ = in.get<std::int32_t>();
-  const bool bounces = in.get<std::int32_t>() != 0;
-  const bool bubbles = in.get<std::int32_t>() != 0;
+  const bool bed = bed_, has_gas = has_gas_;
+  fields(in);
+  bool bounces = false, bubbles = false;
+  in(bounces, bubbles);
   if (last_step != last_step_ || row_every != row_every_ || bed != bed_ || has_gas != has_gas_ ||
       bounces != bounces_.has_value() || bubbles != bubbles_.has_value())
     in.fail("inconsistent (recorded for another scene or end time)");
-  energy_start_ = in.get<EnergyBudget>();
-  ledger_start_ = in.get<EnergyLedger>();
-  in.get_vec(rows_);
-  pending_ = in.get<TimeseriesRow>();
   if (bounces_) bounces_->load(in);
   if (bubbles_) bubbles_->restore(in);
 }

@@ -1,7 +1,7 @@
 #pragma once
 // What a run records while it steps: one timeseries row per output interval and the running
 // sums behind summary.json (the output contract of the architecture: summary keys and
-// timeseries columns). The run loop (run/run.hpp) steps the simulation and hands every step to
+// timeseries columns). The run loop (run/run_loop.hpp) steps the simulation and hands every step to
 // the recorder; the recorder only reads the simulation.
 #include <cmath>
 #include <cstdint>
@@ -65,10 +65,12 @@ class RunRecorder {
   // Its state as bytes and back: a run's checkpoint (run/checkpoint.hpp). restore expects a
   // recorder built for the same run (scene and end step) on the checkpoint's simulation and
   // refuses one that is not; the bubble analysis is saved with it.
-  void save(std::ostream& out) const;
+  void save(BinarySink& out) const;
   void restore(BinarySource& in);
 
  private:
+  template <class Archive>
+  void fields(Archive& a);
   void gas_step_done(const CouplingDiagnostics& c);
   void write_row(const Simulation& sim);
   void add_gas_summary(const Simulation& sim, nlohmann::json& j) const;

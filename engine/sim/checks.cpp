@@ -8,17 +8,14 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/text_format.hpp"
 #include "dem/contact_law.hpp"
 #include "dem/walls.hpp"
 
 namespace fluidbed {
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
+std::string fmt(const char* f, double v) { return format_number(f, v); }
 
 }  // namespace
 
@@ -113,7 +110,7 @@ SceneCheck check_scene(const Settings& s) {
   f.cell_dy_over_d = dy / d;
   f.gas_dt = s.time.dt * s.coupling.particle_steps_per_gas_step;
   f.gas_cfl_at_jet = f.jet_velocity * f.gas_dt / std::min(dx, dy);
-  // The run stops when a gas step's CFL number passes 1 (run/run.hpp); a gas step that would
+  // The run stops when a gas step's CFL number passes 1 (run/run_loop.hpp); a gas step that would
   // pass 0.8 is taken early, but never sooner than every particle step.
   const double cfl_one_step = f.jet_velocity * s.time.dt / std::min(dx, dy);
   if (cfl_one_step > 1.0)

@@ -7,7 +7,7 @@
 #include "scene/scene_loader.hpp"
 #include "analysis/spectrum.hpp"
 #include "run/bubble_recorder.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "sim/model_params.hpp"
 #include "sim/simulation.hpp"
 #include "run/packed_bed.hpp"

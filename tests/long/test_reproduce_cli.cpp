@@ -33,20 +33,24 @@ TEST(ReproduceCli, WritesEveryFigureAndTheReportAfterAnInterrupt) {
   const bool stopped_run_kept = std::filesystem::exists(dir / "ideal/checkpoint/run.bin") ||
                                 std::filesystem::exists(dir / "ideal_geometric/checkpoint/run.bin");
   EXPECT_TRUE(stopped_run_kept);
-  const auto paper_written = std::filesystem::last_write_time(dir / "paper_bed/summary.json");
+  // Every seed's run is in its folder of the ensemble (paper_bed/seeds/S/); --quick runs seed 1.
+  const auto paper_written =
+      std::filesystem::last_write_time(dir / "paper_bed/seeds/1/summary.json");
   const CommandResult r = run_fluidbed("reproduce --resume " + dir.string(), "reproduce");
   ASSERT_EQ(r.status, 0) << r.err << r.out;
-  EXPECT_EQ(std::filesystem::last_write_time(dir / "paper_bed/summary.json"), paper_written);
+  EXPECT_EQ(std::filesystem::last_write_time(dir / "paper_bed/seeds/1/summary.json"),
+            paper_written);
   for (const char* run : {"ideal/checkpoint", "ideal_geometric/checkpoint"})
     EXPECT_FALSE(std::filesystem::exists(dir / run)) << run;
   for (const char* f : {"report.md", "sweep/sweep.png", "sweep/sweep.csv", "sweep/summary.json",
-                        "paper_bed/dp.png", "paper_bed/overlap.png", "paper_bed/trajectory.png",
-                        "paper_bed/summary.json", "paper_bed/bubbles.png", "paper_bed/bubbles.csv",
-                        "paper_bed/dp_spectrum.png", "paper_bed/mixing.png", "uniform/dp.png",
-                        "uniform/summary.json", "uniform/bubbles.png", "ideal/dp.png",
-                        "ideal/summary.json", "ideal/bubbles.png",
-                        "studies/integrators/stability.png", "studies/coupling/pareto.png",
-                        "studies/failures/study.csv"})
+                        "paper_bed/seeds/1/dp.png", "paper_bed/seeds/1/overlap.png",
+                        "paper_bed/seeds/1/trajectory.png", "paper_bed/summary.json",
+                        "paper_bed/seeds/1/bubbles.png", "paper_bed/seeds/1/bubbles.csv",
+                        "paper_bed/seeds/1/dp_spectrum.png", "paper_bed/seeds/1/mixing.png",
+                        "uniform/seeds/1/dp.png", "uniform/summary.json",
+                        "uniform/seeds/1/bubbles.png", "ideal/dp.png", "ideal/summary.json",
+                        "ideal/bubbles.png", "studies/integrators/stability.png",
+                        "studies/coupling/pareto.png", "studies/failures/study.csv"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   const std::string report = read_file(dir / "report.md");
   for (const char* row :

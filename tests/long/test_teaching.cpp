@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "scene/scene_loader.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "sim/simulation.hpp"
 #include "run/packed_bed.hpp"
 

@@ -13,7 +13,7 @@
 #include "../test_support.hpp"
 #include "analysis/packing_metrics.hpp"
 #include "io/liggghts_export.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
 

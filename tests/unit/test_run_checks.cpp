@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fluidbed;

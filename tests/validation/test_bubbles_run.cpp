@@ -7,7 +7,7 @@
 
 #include "../test_support.hpp"
 #include "run/packed_bed.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "scene/scene_loader.hpp"
 
 using namespace fluidbed;

@@ -10,7 +10,7 @@
 #include "coupling/drag.hpp"
 #include "analysis/packing_metrics.hpp"
 #include "scene/scene_loader.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "sim/simulation.hpp"
 #include "run/packed_bed.hpp"
 

@@ -9,7 +9,7 @@
 #include "../test_support.hpp"
 #include "analysis/bounce_tracker.hpp"
 #include "scene/scene_loader.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fluidbed;

@@ -23,7 +23,7 @@
 
 #include "core/errors.hpp"
 #include "core/random.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "scene/scene_keys.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"

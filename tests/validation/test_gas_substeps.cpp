@@ -8,7 +8,7 @@
 #include <cstdio>
 
 #include "run/packed_bed.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
 

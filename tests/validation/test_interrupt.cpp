@@ -11,7 +11,7 @@
 #include <string>
 
 #include "../test_support.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 
 using namespace fluidbed;
 using namespace fluidbed::testing;

@@ -21,7 +21,7 @@
 #include "io/liggghts_export.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/placement.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "sim/simulation.hpp"
 
 using namespace fluidbed;

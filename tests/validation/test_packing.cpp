@@ -4,7 +4,7 @@
 
 #include "../test_support.hpp"
 #include "scene/scene_loader.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 
 using namespace fluidbed;
 

@@ -14,7 +14,7 @@
 
 #include "../test_support.hpp"
 #include "run/checkpoint.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "scene/scene_loader.hpp"
 
 using namespace fluidbed;

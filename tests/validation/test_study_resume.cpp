@@ -101,7 +101,7 @@ CommandResult stop_resume_and_compare(int sig, const std::string& tag) {
                                               [&] { return stored_count(dir) >= 3; }, sig);
   EXPECT_TRUE(t.terminated) << "the study finished before three of its points were stored";
   const CommandResult stopped = {t.status, read_file(dir / "err.txt"), read_file(dir / "out.txt")};
-  for (const char* f : {"summary.md", "report.json", "study.csv"})
+  for (const char* f : {"summary.md", "status.json", "study.csv"})
     EXPECT_FALSE(fs::exists(dir / f)) << f << ": an unfinished study has none";
   const std::map<std::string, std::string> kept = stored_points(dir);
   EXPECT_GE(kept.size(), 3u);

@@ -9,7 +9,7 @@
 
 #include "../test_support.hpp"
 #include "core/errors.hpp"
-#include "run/sweep.hpp"
+#include "run/velocity_sweep.hpp"
 #include "analysis/umf_fit.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"

@@ -7,12 +7,14 @@
 // The mean pressure drop of each run is eq 30 over its settled part. Runs of the increasing
 // branch are independent and run in parallel; the decreasing chain runs beside them.
 //
-// Each run's folder, OUT/runs/BRANCH-U/, holds its usual files, final.state and, once the run
-// ended (finished or failed), point.json (its row of the sweep). A run stopped by `stop` leaves
-// checkpoint/ (run/checkpoint.hpp) instead. OUT/sweep.json says what the sweep is (the resolved
-// scene, the velocities, the run and averaging times, the caller's `command`): a resumed sweep
-// must be the same sweep. Resumed, a run with point.json is read back, a run with a checkpoint
-// continues from it, the rest run; the result is the uninterrupted sweep's, bit for bit.
+// Each run's folder, OUT/runs/BRANCH-U/, is a run in a folder (run/run_folder.hpp): its usual
+// files, final.state and, once the run ended (finished or failed), its finished marker
+// status.json (with the configuration hashes at its start and end). A run stopped by `stop`
+// leaves checkpoint/ (run/checkpoint.hpp) instead. OUT/sweep.json says what the sweep is (the
+// resolved scene, the velocities, the run and averaging times, the caller's `command`): a
+// resumed sweep must be the same sweep. Resumed, a run that ended is read back, a run with a
+// checkpoint continues from it, the rest run; the result is the uninterrupted sweep's, bit for
+// bit.
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -50,7 +52,7 @@ struct SweepPoint {
   std::uint64_t start_hash = 0, end_hash = 0;  // particle configuration hashes (hand-over)
   std::string state_path;                      // its final state
   bool interrupted = false;                    // stopped (SweepOptions::stop): not a result
-  bool resumed = false;                        // read back from point.json, or continued
+  bool resumed = false;                        // read back from its folder, or continued
 };
 
 struct SweepResult {

@@ -7,7 +7,8 @@
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "studies/study.hpp"
+#include "run/ensemble.hpp"
+#include "studies/common.hpp"
 
 namespace fluidbed::app::study {
 namespace {
@@ -47,27 +48,7 @@ bool parse_number(const std::string& text, double& v) {
   return end == text.c_str() + text.size() && std::isfinite(v);
 }
 
-struct Stat {
-  double mean = NAN, std = NAN, min = NAN, max = NAN;
-  int n = 0;
-};
-
-Stat statistics(const std::vector<double>& v) {
-  Stat s;
-  s.n = static_cast<int>(v.size());
-  if (v.empty()) return s;
-  double sum = 0.0;
-  for (double x : v) sum += x;
-  s.mean = sum / s.n;
-  s.min = *std::min_element(v.begin(), v.end());
-  s.max = *std::max_element(v.begin(), v.end());
-  if (s.n > 1) {
-    double sq = 0.0;
-    for (double x : v) sq += (x - s.mean) * (x - s.mean);
-    s.std = std::sqrt(sq / (s.n - 1));
-  }
-  return s;
-}
+using Stat = SampleStatistics;  // run/ensemble.hpp
 
 // Student's t at 95 % (two-sided) for `df` degrees of freedom.
 double t95(int df) {
@@ -77,7 +58,6 @@ double t95(int df) {
   return df < 1 ? NAN : df <= 30 ? t[df - 1] : 1.96;
 }
 
-std::string g(double v) { return std::isfinite(v) ? fmt("%.6g", v) : std::string(); }
 
 // The study's bounds (Info::bounds) judged on each point's mean over the seeds, not settled where
 // a bound lies within two standard errors of that mean; and the cheapest point within every
@@ -119,7 +99,7 @@ std::string bounds_over_seeds(const std::vector<Bound>& bounds,
         md << " (" << s.n << " of " << seeds << " seeds)";
       md << " |";
     }
-    if (cost) md << " " << g(stats[r][cost].mean) << " |";
+    if (cost) md << " " << table_number(stats[r][cost].mean) << " |";
     md << " " << v.text << " |\n";
     if (r > 0 && cost && v.within && v.settled &&
         (!best || stats[r][cost].mean < stats[best][cost].mean))
@@ -128,7 +108,7 @@ std::string bounds_over_seeds(const std::vector<Bound>& bounds,
   if (cost)
     md << "\n"
        << (best ? "Cheapest within every bound, settled by the ensemble: `" + first[best + 1][0] +
-                      "` (" + g(stats[best][cost].mean) + " `" + columns[cost] + "`)."
+                      "` (" + table_number(stats[best][cost].mean) + " `" + columns[cost] + "`)."
                 : std::string("No point after the first is within every bound and settled by "
                               "the ensemble."))
        << "\n";
@@ -177,10 +157,10 @@ void write_study_ensemble(const Info& info, const std::string& dir,
       }
       if (!numeric || v.empty()) continue;
       values[r - 1][c] = each;
-      const Stat s = statistics(v);
+      const Stat s = sample_statistics(v);
       stats[r - 1][c] = s;
-      csv << r << ',' << csv_text(first[r][0]) << ',' << csv_text(columns[c]) << ',' << g(s.mean)
-          << ',' << g(s.std) << ',' << g(s.min) << ',' << g(s.max) << ',' << s.n << '\n';
+      csv << r << ',' << csv_text(first[r][0]) << ',' << csv_text(columns[c]) << ',' << table_number(s.mean)
+          << ',' << table_number(s.std) << ',' << table_number(s.min) << ',' << table_number(s.max) << ',' << s.n << '\n';
     }
   write_text((fs::path(dir) / "ensemble.csv").string(), csv.str());
 
@@ -227,7 +207,7 @@ void write_study_ensemble(const Info& info, const std::string& dir,
       for (std::size_t m = 0; m < seeds.size(); ++m)
         if (std::isfinite(values[r][c][m]) && std::isfinite(values[0][c][m]))
           d.push_back(values[r][c][m] - values[0][c][m]);
-      const Stat paired = statistics(d);
+      const Stat paired = sample_statistics(d);
       if (paired.n < 2 || (paired.min == 0.0 && paired.max == 0.0)) continue;
       ++compared;
       const double diff = paired.mean, spread = std::max(s.std, base.std);
@@ -235,9 +215,9 @@ void write_study_ensemble(const Info& info, const std::string& dir,
       const bool sure =
           std::fabs(diff) > t95(paired.n - 1) * paired.std / std::sqrt(paired.n);
       ++(sure ? resolved : unresolved);
-      md << "- `" << columns[c] << "`, `" << first[r + 1][0] << "`: " << g(s.mean) << " +- "
-         << g(s.std) << " against " << g(base.mean) << " +- " << g(base.std) << " (difference "
-         << g(diff) << " +- " << g(paired.std) << " seed by seed, one run's spread " << g(spread)
+      md << "- `" << columns[c] << "`, `" << first[r + 1][0] << "`: " << table_number(s.mean) << " +- "
+         << table_number(s.std) << " against " << table_number(base.mean) << " +- " << table_number(base.std) << " (difference "
+         << table_number(diff) << " +- " << table_number(paired.std) << " seed by seed, one run's spread " << table_number(spread)
          << "): "
          << (sure ? "the ensemble resolves it"
                   : "the ensemble does not resolve it either")

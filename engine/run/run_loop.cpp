@@ -1,4 +1,4 @@
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -114,30 +114,60 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   return result;
 }
 
+namespace {
+
+// Every column of timeseries.csv, in order: its name and its value in a row, each with its
+// printf format. The header and the rows are both written from this one list.
+template <class F>
+void timeseries_columns(const TimeseriesRow& r, bool bubbles, F&& column) {
+  const EnergyBudget& e = r.energy;
+  column("t", "%.9g", r.t);
+  column("dp", "%.9g", r.dp);
+  column("max_overlap_ratio", "%.6g", r.max_overlap_ratio);
+  column("max_wall_overlap_ratio", "%.6g", r.max_wall_overlap_ratio);
+  column("kinetic_energy", "%.9g", r.kinetic_energy);
+  column("contacts", "%d", r.pair_contacts + r.wall_contacts);
+  column("pair_contacts", "%d", r.pair_contacts);
+  column("wall_contacts", "%d", r.wall_contacts);
+  column("simple_iterations", "%d", r.simple_iterations);
+  column("mass_residual", "%.3g", r.mass_residual);
+  column("max_cfl", "%.4g", r.max_cfl);
+  column("fluid_force_y", "%.6g", r.fluid_force_y);
+  column("e_kinetic", "%.9g", e.kinetic_translation);
+  column("e_rotation", "%.9g", e.kinetic_rotation);
+  column("e_potential", "%.9g", e.potential);
+  column("e_spring_n", "%.9g", e.spring_normal);
+  column("e_spring_t", "%.9g", e.spring_tangential);
+  column("w_gas", "%.9g", e.gas_work);
+  column("e_dashpot", "%.9g", e.dashpot);
+  column("e_friction", "%.9g", e.friction);
+  column("e_residual", "%.6g", e.residual);
+  column("bed_height", "%.6g", r.bed_height);
+  if (bubbles) {
+    column("bubbles", "%d", r.bubbles);
+    column("regime", "%s", to_string(r.regime));
+  }
+}
+
+}  // namespace
+
 std::string timeseries_header(bool bubbles) {
-  std::string h =
-      "t,dp,max_overlap_ratio,max_wall_overlap_ratio,kinetic_energy,contacts,pair_contacts,"
-      "wall_contacts,simple_iterations,mass_residual,max_cfl,fluid_force_y,e_kinetic,e_rotation,"
-      "e_potential,e_spring_n,e_spring_t,w_gas,e_dashpot,e_friction,e_residual,bed_height";
-  return h + (bubbles ? ",bubbles,regime\n" : "\n");
+  std::string h;
+  timeseries_columns(TimeseriesRow{}, bubbles, [&](const char* name, const char*, const auto&) {
+    h += h.empty() ? "" : ",";
+    h += name;
+  });
+  return h + "\n";
 }
 
 std::string timeseries_line(const TimeseriesRow& row, bool bubbles) {
-  char line[256];
-  std::snprintf(line, sizeof line, "%.9g,%.9g,%.6g,%.6g,%.9g,%d,%d,%d,%d,%.3g,%.4g,%.6g", row.t,
-                row.dp, row.max_overlap_ratio, row.max_wall_overlap_ratio, row.kinetic_energy,
-                row.pair_contacts + row.wall_contacts, row.pair_contacts, row.wall_contacts,
-                row.simple_iterations, row.mass_residual, row.max_cfl, row.fluid_force_y);
-  std::string csv = line;
-  const EnergyBudget& e = row.energy;
-  std::snprintf(line, sizeof line, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g",
-                e.kinetic_translation, e.kinetic_rotation, e.potential, e.spring_normal,
-                e.spring_tangential, e.gas_work, e.dashpot, e.friction, e.residual, row.bed_height);
-  csv += line;
-  if (bubbles) {
-    std::snprintf(line, sizeof line, ",%d,%s", row.bubbles, to_string(row.regime));
-    csv += line;
-  }
+  std::string csv;
+  char value[64];
+  timeseries_columns(row, bubbles, [&](const char*, const char* format, const auto& v) {
+    std::snprintf(value, sizeof value, format, v);
+    csv += csv.empty() ? "" : ",";
+    csv += value;
+  });
   return csv + "\n";
 }
 

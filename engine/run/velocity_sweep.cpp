@@ -1,4 +1,4 @@
-#include "run/sweep.hpp"
+#include "run/velocity_sweep.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -16,11 +16,13 @@
 #include <optional>
 
 #include "core/atomic_file.hpp"
+#include "core/binary_io.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/run_pool.hpp"
 #include "run/checkpoint.hpp"
 #include "run/packed_bed.hpp"
-#include "run/run.hpp"
+#include "run/run_folder.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"
 #include "sim/simulation.hpp"
@@ -40,107 +42,72 @@ fs::path point_dir(const SweepOptions& o, const std::string& branch, double u) {
   return fs::path(o.out_dir) / "runs" / point_name(branch, u);
 }
 
-// A finished point's row (point.json): what a resumed sweep reads back instead of running it.
-nlohmann::json point_json(const SweepPoint& p) {
-  return {{"branch", p.branch},       {"u_superficial", p.u},  {"ok", p.ok},
-          {"error", p.error},         {"dp_mean", p.dp_mean},  {"dp_std", p.dp_std},
-          {"wall_time_s", p.wall_time}, {"start_hash", p.start_hash}, {"end_hash", p.end_hash}};
-}
-
-// The point.json of `dir`, if there is one that belongs to this point and, for a finished run,
-// its final state is there too.
-std::optional<SweepPoint> read_point(const fs::path& dir, const std::string& branch, double u) {
-  const fs::path file = dir / "point.json";
-  if (!fs::is_regular_file(file)) return std::nullopt;
-  SweepPoint p;
-  try {
-    std::ifstream in(file);
-    const nlohmann::json j = nlohmann::json::parse(in);
-    p.branch = j.at("branch").get<std::string>();
-    p.u = j.at("u_superficial").get<double>();
-    p.ok = j.at("ok").get<bool>();
-    p.error = j.at("error").get<std::string>();
-    p.dp_mean = j.at("dp_mean").get<double>();
-    p.dp_std = j.at("dp_std").get<double>();
-    p.wall_time = j.at("wall_time_s").get<double>();
-    p.start_hash = j.at("start_hash").get<std::uint64_t>();
-    p.end_hash = j.at("end_hash").get<std::uint64_t>();
-  } catch (const std::exception&) {
-    throw InputError(file.string() + ": not a sweep point's record");
+// The particle configuration's hash at a point's start and end (the hand-over along the
+// decreasing branch), kept in its finished marker's `result`.
+class ConfigurationHashes : public RunOutput {
+ public:
+  void start(const Simulation& sim, double) override { start_ = sim.dem().configuration_hash(); }
+  void restore(const std::string& folder, const Simulation&, double) override {
+    const std::string p = (fs::path(folder) / "start_hash.bin").string();
+    std::ifstream in = open_input_file(p, "checkpoint");
+    BinarySource src(in, p);
+    src(start_);
   }
-  if (p.branch != branch || p.u != u)
-    throw InputError(file.string() + ": the record of another run of the sweep");
-  if (p.ok) {
-    p.state_path = (dir / "final.state").string();
-    if (!fs::is_regular_file(p.state_path)) return std::nullopt;  // run it again
+  void observe(const Simulation&) override {}
+  void save(const std::string& folder) override {
+    std::ofstream out(fs::path(folder) / "start_hash.bin", std::ios::binary);
+    BinarySink sink(out);
+    sink(start_);
   }
-  p.resumed = true;
-  return p;
-}
+  void finish(FinishedRun& run) override {
+    run.result_record["start_hash"] = start_;
+    run.result_record["end_hash"] = run.sim.dem().configuration_hash();
+  }
 
-// One run of the sweep: from the scene's start (up) or from `from_state` (down). Resumed, a
-// recorded run is read back and a checkpointed one continues.
+ private:
+  std::uint64_t start_ = 0;
+};
+
+// One run of the sweep in its folder (run/run_folder.hpp): from the scene's start (up) or from
+// `from_state` (down). Resumed, a run that ended is read back and a stopped one continues.
 SweepPoint run_point(const Settings& scene, const SweepOptions& o, const std::string& branch,
                      double u, const std::string& from_state) {
-  const fs::path dir = point_dir(o, branch, u);
-  if (o.resume)
-    if (std::optional<SweepPoint> done = read_point(dir, branch, u)) return *done;
   SweepPoint pt;
   pt.branch = branch;
   pt.u = u;
-  Settings s = scene;
+  RunJob job;
+  job.scene = scene;
   // Runs side by side take a core each; a lone run may use them all.
-  if (o.threads > 1) s.threads = 1;
-  s.inlet.superficial_velocity = u;
-  s.time.end = o.run_time;
-  s.diagnostics.averaging_start = o.averaging_start;
-  s.diagnostics.save_state.clear();
-  const std::string scene_toml = to_toml(s);
-  const auto start = std::chrono::steady_clock::now();
-  double wall_before = 0.0;
-  try {
-    Simulation sim(s);
-    if (!from_state.empty()) sim.continue_from(from_state);
-    pt.start_hash = sim.dem().configuration_hash();
-    RunOptions ro;
-    std::optional<Checkpoint> c;
-    if (o.resume && has_checkpoint(dir.string())) {
-      c = read_checkpoint(dir.string());
-      if (c->scene_toml != scene_toml)
-        throw InputError("cannot resume " + dir.string() + ": its checkpoint is of another scene (" +
-                         first_difference(scene_toml, c->scene_toml) + ")");
-      restore_simulation(*c, sim);
-      ro.restore = [&](RunRecorder& rec) { restore_recorder(*c, rec); };
-      ro.wall_before = wall_before = c->wall;
-      pt.resumed = true;
-    }
-    ro.stop = o.stop;
-    ro.checkpoint = [&](const Simulation& x, const RunRecorder& rec, double wall) {
-      write_checkpoint(dir.string(), x, rec, wall, scene_toml,
-                       o.command.is_object() ? o.command : nlohmann::json::object(), false);
-    };
-    ro.checkpoint_interval = o.checkpoint_interval;
-    const RunResult r = run_simulation(sim, ro);
-    if (!r.completed) {
-      pt.interrupted = true;
-      return pt;
-    }
-    write_run_outputs(dir.string(), r);
-    pt.dp_mean = r.summary.value("dp_mean_pa", 0.0);
-    pt.dp_std = r.summary.value("dp_std_pa", 0.0);
-    pt.end_hash = sim.dem().configuration_hash();
-    pt.state_path = (dir / "final.state").string();
-    sim.save_state(pt.state_path);
-    pt.ok = true;
-  } catch (const SimulationFailure& e) {
-    pt.error = e.what();
+  if (o.threads > 1) job.scene.threads = 1;
+  job.scene.inlet.superficial_velocity = u;
+  job.scene.time.end = o.run_time;
+  job.scene.diagnostics.averaging_start = o.averaging_start;
+  job.scene.diagnostics.save_state.clear();
+  job.start_state = from_state;
+  job.started = o.command.is_object() ? o.command : nlohmann::json::object();
+  job.final_state = "final.state";
+  job.outputs.push_back(std::make_unique<ConfigurationHashes>());
+  RunControl control;
+  control.resume = o.resume;
+  control.stop = o.stop;
+  control.checkpoint_every = std::max(0.0, o.checkpoint_interval);
+  const fs::path dir = point_dir(o, branch, u);
+  const RunEnd end = run_in_folder(dir.string(), job, control);
+  if (end.how == RunEnd::How::stopped) {
+    pt.interrupted = true;
+    return pt;
   }
-  pt.wall_time =
-      wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  fs::create_directories(dir);
-  write_file_atomically((dir / "point.json").string(),
-                        [&](std::ostream& out) { out << point_json(pt).dump(2) << "\n"; });
-  remove_checkpoint(dir.string());
+  pt.resumed = end.resumed;
+  pt.wall_time = end.wall;
+  pt.ok = end.finished();
+  pt.error = end.error;
+  pt.start_hash = end.record.value("start_hash", std::uint64_t{0});
+  pt.end_hash = end.record.value("end_hash", std::uint64_t{0});
+  if (pt.ok) {
+    pt.dp_mean = end.result.summary.value("dp_mean_pa", 0.0);
+    pt.dp_std = end.result.summary.value("dp_std_pa", 0.0);
+    pt.state_path = (dir / "final.state").string();
+  }
   return pt;
 }
 
@@ -238,7 +205,7 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
     for (const char* branch : {"up", "down"})
       for (double u : o.velocities) {
         std::error_code ec;
-        fs::remove(point_dir(o, branch, u) / "point.json", ec);
+        fs::remove(point_dir(o, branch, u) / "status.json", ec);
         remove_checkpoint(point_dir(o, branch, u).string());
       }
     const nlohmann::json identity = sweep_identity(scene, o);

@@ -17,9 +17,11 @@
 
 #include "chart/chart.hpp"
 #include "dem/contact_law.hpp"
-#include "run/run.hpp"
+#include "run/run_loop.hpp"
 #include "scene/settings.hpp"
+#include "core/json_fields.hpp"
 #include "core/run_pool.hpp"
+#include "core/text_format.hpp"
 
 namespace fluidbed::app::study {
 
@@ -44,7 +46,7 @@ struct Options {
   std::optional<std::uint64_t> seed;
 };
 
-// A study stopped by Options::stop: it wrote no study.csv, summary.md or report.json.
+// A study stopped by Options::stop: it wrote no study.csv, summary.md or status.json.
 struct Interrupted : std::runtime_error {
   Interrupted() : std::runtime_error("study interrupted") {}
 };
@@ -108,8 +110,8 @@ Report run_study(const Info& info, const Options& o);
 // With o.resume: InputError (one line, naming what differs) unless o.out holds a study that
 // run_study(info, o) would resume. Callers check before they touch the folder.
 void check_study_resume(const Info& info, const Options& o);
-// The report a finished study left in its folder (DIR/report.json, written last by run_study
-// with the size it ran at): `reproduce --resume` keeps it instead of running the study again.
+// The report a finished study left in its folder (its finished marker DIR/status.json, written
+// last by run_study with the report and the size it ran at): `reproduce --resume` keeps it instead of running the study again.
 // Nothing when there is none, it is unreadable, or it is of another size.
 std::optional<Report> finished_study(const std::string& dir, Size size);
 
@@ -136,9 +138,6 @@ double thread_cpu_seconds();
 // measures it again even when kept (a point whose files beside it are gone).
 nlohmann::json stored_point(const Options& o, const nlohmann::json& what, bool reuse,
                             const std::function<nlohmann::json()>& compute);
-// The FNV-1a hash of a file's bytes, in hex (a start state's part of what defines a point); empty
-// when it cannot be read.
-std::string file_digest(const std::string& path);
 // What defines a run of `s` to `until` (s) for stored_point: KIND, the settings as TOML, the
 // threads inside a step and the bytes of a start state (not its path).
 nlohmann::json run_definition(const char* kind, const Settings& s, double until);
@@ -156,11 +155,12 @@ struct PointRun {
   double wall = 0.0;  // s, the whole point
   double cpu = 0.0;   // s, thread CPU time of run_simulation (the cost)
 };
-// Runs `s` to `until` (s) with the given options; SimulationFailure becomes a failed point. A
-// stored point (stored_point): of the result it keeps `summary` and `rows` (not the bubble rows,
-// mixing or spectrum; the options' hooks are not called for a point read back). An interrupted
-// point starts again from its start when the study resumes.
-PointRun run_point(const Options& o, const Settings& s, double until, RunOptions options = {});
+// Runs `s` to `until` (s), with the bubble analysis when asked; SimulationFailure becomes a failed
+// point. A stored point (stored_point): of the result it keeps `summary` and `rows` (not the
+// bubble rows, mixing or spectrum). It runs as a run in a folder (run/run_folder.hpp) in
+// DIR/points/KEY/, removed once the point is kept: a point stopped midway keeps its checkpoint
+// there, and the resumed study continues it from that step.
+PointRun run_point(const Options& o, const Settings& s, double until, bool bubbles = false);
 nlohmann::json point_run_json(const PointRun& p);
 PointRun point_run_from_json(const nlohmann::json& j);
 
@@ -218,25 +218,12 @@ double json_number(const nlohmann::json& j, const char* key);
 // A number of one of its objects (`dp_spectrum`, `bubbles`); NaN when either is missing.
 double json_number(const nlohmann::json& j, const char* object, const char* key);
 
-// A point's result as JSON and back (stored_point): fields(r, f) calls f("name", r.member) for
-// each member kept (numbers, bools, strings). A double that is not finite is written as null (as
-// JSON has it) and read back as NaN.
-template <class T, class Fields>
-nlohmann::json fields_json(const T& r, Fields&& fields) {
-  nlohmann::json j = nlohmann::json::object();
-  fields(r, [&](const char* name, const auto& v) { j[name] = v; });
-  return j;
-}
+// A point's result as JSON and back (stored_point), through its field list
+// (core/json_fields.hpp).
 template <class T, class Fields>
 T fields_from_json(const nlohmann::json& j, Fields&& fields) {
   T r;
-  fields(r, [&](const char* name, auto& v) {
-    using V = std::decay_t<decltype(v)>;
-    if constexpr (std::is_same_v<V, double>)
-      v = json_number(j, name);
-    else
-      v = j.at(name).template get<V>();
-  });
+  fluidbed::fields_from_json(j, r, fields);
   return r;
 }
 
@@ -251,11 +238,12 @@ T stored_fields(const Options& o, const nlohmann::json& what, Fields&& fields, C
 // The drop scene: one particle released at height Y (m) above the floor's wall, no gas.
 Settings drop_scene(double y);
 
-// %.6g, and empty for NaN (a value that does not exist for a failed point).
-std::string num(double v);
-// printf into a string.
-std::string fmt(const char* format, double v);
-std::string csv_text(std::string s);  // quoted when it holds a comma or a quote
+// The program's number formats (core/text_format.hpp) under the studies' short names: %.6g and
+// empty for NaN (a value that does not exist for a failed point); printf of one number; a CSV
+// field.
+inline std::string num(double v) { return table_number(v); }
+inline std::string fmt(const char* format, double v) { return format_number(format, v); }
+inline std::string csv_text(std::string s) { return csv_field(std::move(s)); }
 
 void write_text(const std::string& path, const std::string& text);
 // A chart with both axes logarithmic (errors and costs against steps or costs).
