@@ -9,7 +9,6 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/view_headless.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "output/frames.hpp"
@@ -17,6 +16,7 @@
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"
 #include "view/engine.hpp"
+#include "view/headless.hpp"
 #include "view/script.hpp"
 #include "view/window.hpp"
 

@@ -182,12 +182,7 @@ void Viewer::stop_recording() {
 }
 
 void Viewer::save_curve_file(const std::string& path) {
-  write_output(path, [&] {
-    if (std::filesystem::path(path).extension() == ".png")
-      curve_image(status_.curve, opt_.font).write_png(path);
-    else
-      write_file_atomically(path, [&](std::ofstream& out) { write_curve_csv(out, status_.curve); });
-  });
+  write_output(path, [&] { write_curve_file(path, status_.curve, opt_.font); });
 }
 
 // A file the viewer writes (its folder made first), said in the panel and on the terminal; a
