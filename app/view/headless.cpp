@@ -263,8 +263,7 @@ class HeadlessTarget : public ScriptTarget {
     return true;
   }
   bool colour(const std::string& mode) override {
-    look_.colour_by = mode == "mixing" ? render::ColourBy::height : render::parse_colour_by(mode);
-    look_.range_min = look_.range_max = 0.0;
+    render::set_colour_by(look_, render::parse_viewer_colour(mode));
     return true;
   }
   bool gas_arrows(bool on) override { return set(look_.gas_arrows, on); }

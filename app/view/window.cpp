@@ -338,19 +338,20 @@ void Viewer::toggle_run() {
   post({pause ? ViewCommand::Kind::pause : ViewCommand::Kind::run, 0.0});
 }
 
+// The panel's buttons in turn (the viewer's colour words, render/colour_by.hpp).
 void Viewer::cycle_colour() {
   using render::ColourBy;
-  static constexpr ColourBy order[] = {ColourBy::speed,   ColourBy::force,  ColourBy::torque,
-                                       ColourBy::overlap, ColourBy::height, ColourBy::depth};
+  std::vector<ColourBy> order;
+  for (const render::ColourByName& mode : render::kColourByNames)
+    if (render::is_viewer_name(mode)) order.push_back(mode.value);
   // A monolayer's depth is one colour (every centre on the mid-plane): the key skips it there.
   const bool thick = snap_ && !snap_->z.empty();
   std::size_t k = 0;
-  while (k < std::size(order) && order[k] != look_.colour_by) ++k;
+  while (k < order.size() && order[k] != look_.colour_by) ++k;
   do {
-    k = (k + 1) % std::size(order);
+    k = (k + 1) % order.size();
   } while (order[k] == ColourBy::depth && !thick);
-  look_.colour_by = order[k];
-  look_.range_min = look_.range_max = 0.0;  // the new quantity's own range
+  render::set_colour_by(look_, order[k]);
 }
 
 // The script (view/script_runner.hpp): the runner calls the commands below one after the
@@ -461,8 +462,7 @@ bool Viewer::wait(double wall_seconds) {
 }
 
 bool Viewer::colour(const std::string& mode) {
-  look_.colour_by = mode == "mixing" ? render::ColourBy::height : render::parse_colour_by(mode);
-  look_.range_min = look_.range_max = 0.0;
+  render::set_colour_by(look_, render::parse_viewer_colour(mode));
   return true;
 }
 
