@@ -124,14 +124,14 @@ void Viewer::draw_top_block() {
   if (ImGui::Button("Reset", ImVec2(button, 0))) post({ViewCommand::Kind::reset, 0.0});
   note_widget("reset_button");
   if (ImGui::Button("Screenshot", ImVec2(button * 1.5f, 0)))
-    screenshot_requests_.push_back(next_name("screenshot", ".png"));
+    capture_.screenshot(next_name("screenshot", ".png"));
   note_widget("screenshot_button");
   ImGui::SameLine();
-  const bool recording = video_ || !record_dir_.empty();
+  const bool recording = capture_.recording();
   if (ImGui::Button(recording ? "Stop recording" : "Record", ImVec2(button * 1.5f, 0))) {
     try {
       if (recording)
-        stop_recording();
+        capture_.stop_recording();
       else
         start_recording(next_name("recording", record_mp4_ ? ".mp4" : ""));
     } catch (const std::exception& e) {

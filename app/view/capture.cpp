@@ -1,22 +1,14 @@
-// The viewer's pictures and files: screenshots and recordings of the window as shown (panel,
-// bed, captions), the live curve saved, and the widgets' places for tests.
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
-#include <imgui.h>
+#include "view/capture.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
-#include <fstream>
-#include <functional>
+#include <utility>
 
-#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
-#include "render/image.hpp"
-#include "view/curve_chart.hpp"
-#include "view/window.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -69,58 +61,26 @@ render::Image fit(const render::Image& img, int w, int h) {
 
 }  // namespace
 
-// Where the widgets and bed panels are, in window pixels (for tests that drive the window with
-// a pointer, $FLUIDBED_VIEW_WIDGETS): one line each, "name x0 y0 x1 y1 value"; rewritten when
-// something changed.
-void Viewer::write_widgets() {
-  std::string text;
-  char line[160];
-  const ImGuiIO& io = ImGui::GetIO();
-  std::snprintf(line, sizeof line, "window 0 0 %.0f %.0f %d\n", io.DisplaySize.x, io.DisplaySize.y,
-                static_cast<int>(panel_.font));
-  text += line;
-  for (std::size_t k = 0; k < layout_.beds.size(); ++k) {
-    const render::Rect& c = layout_.beds[k].clip;
-    std::snprintf(line, sizeof line, "bed%zu %.1f %.1f %.1f %.1f %s\n", k, to_window_x(c.x0),
-                  to_window_y(c.y0), to_window_x(c.x1), to_window_y(c.y1),
-                  layout_.beds[k].zoomed ? "zoomed" : "whole");
-    text += line;
-  }
-  for (const std::string& w : widget_lines_) text += w + "\n";
-  if (text == widgets_written_) return;
-  widgets_written_ = text;
-  try {
-    write_file_atomically(widgets_file_, [&](std::ofstream& out) { out << text; });
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "fluidbed view: %s\n", e.what());
-    widgets_file_.clear();
-  }
+WindowCapture::WindowCapture(std::function<void(const std::string&)> say)
+    : say_(std::move(say)) {}
+
+void WindowCapture::screenshot(const std::string& path) {
+  screenshots_.push_back(path);
 }
 
-std::string Viewer::next_name(const std::string& stem, const std::string& ext) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(opt_.out_dir, ec);
-  for (;;) {
-    char name[64];
-    std::snprintf(name, sizeof name, "%s_%03d%s", stem.c_str(), ++counter_, ext.c_str());
-    const fs::path p = fs::path(opt_.out_dir) / name;
-    if (!fs::exists(p, ec)) return p.string();
-  }
-}
-
-void Viewer::capture_if_requested() {
-  const bool recording = video_ || !record_dir_.empty();
-  if (screenshot_requests_.empty() && !recording) return;
-  if (!screenshot_requests_.empty() && settle_frames_ > 0) {
+void WindowCapture::after_frame(
+    const render::GlContext& context,
+    const std::function<void(const std::string&, const render::Image&)>& write_screenshot) {
+  const bool recording = this->recording();
+  if (screenshots_.empty() && !recording) return;
+  if (!screenshots_.empty() && settle_frames_ > 0) {
     --settle_frames_;
     if (!recording) return;
   }
-  const render::Image img = read_window(*context_);
-  if (!screenshot_requests_.empty() && settle_frames_ <= 0) {
-    for (const std::string& path : screenshot_requests_)
-      write_output(path, [&] { render::write_png(path, img); });
-    screenshot_requests_.clear();
+  const render::Image img = read_window(context);
+  if (!screenshots_.empty() && settle_frames_ <= 0) {
+    for (const std::string& path : screenshots_) write_screenshot(path, img);
+    screenshots_.clear();
   }
   if (!recording) return;
   // Frames at a steady 25 per wall second: repeated when drawing is slower, skipped when faster,
@@ -139,13 +99,13 @@ void Viewer::capture_if_requested() {
       record_frames_ = due;
     }
   } catch (const std::exception& e) {
-    message_ = std::string("recording stopped: ") + e.what();
+    say_(std::string("recording stopped: ") + e.what());
     video_.reset();
     record_dir_.clear();
   }
 }
 
-void Viewer::start_recording(const std::string& target) {
+void WindowCapture::start_recording(const std::string& target, int width, int height) {
   stop_recording();
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -156,8 +116,8 @@ void Viewer::start_recording(const std::string& target) {
   if (mp4) {
     if (fs::path(target).has_parent_path())
       fs::create_directories(fs::path(target).parent_path(), ec);
-    record_frames_w_ = context_->width() & ~1;
-    record_frames_h_ = context_->height() & ~1;
+    record_frames_w_ = width & ~1;
+    record_frames_h_ = height & ~1;
     video_ = std::make_unique<render::VideoWriter>(target, record_frames_w_, record_frames_h_,
                                                    kRecordFps);
   } else {
@@ -165,44 +125,23 @@ void Viewer::start_recording(const std::string& target) {
     if (ec) throw InputError("cannot create the recording folder " + target + ": " + ec.message());
     record_dir_ = target;
   }
-  message_ = "recording to " + target;
+  say_("recording to " + target);
 }
 
-void Viewer::stop_recording() {
+void WindowCapture::stop_recording() {
+  std::string said;
   if (video_) {
     auto v = std::move(video_);
     v->close();
-    message_ = "wrote " + record_target_ + " (" + std::to_string(v->frames()) + " frames)";
-    std::printf("%s\n", message_.c_str());
+    said = "wrote " + record_target_ + " (" + std::to_string(v->frames()) + " frames)";
   } else if (!record_dir_.empty()) {
-    message_ = "wrote " + std::to_string(record_frames_) + " frames to " + record_dir_;
-    std::printf("%s\n", message_.c_str());
+    said = "wrote " + std::to_string(record_frames_) + " frames to " + record_dir_;
     record_dir_.clear();
+  } else {
+    return;
   }
-}
-
-void Viewer::save_curve_file(const std::string& path) {
-  write_output(path, [&] { write_curve_file(path, status_.curve, opt_.font); });
-}
-
-// A file the viewer writes (its folder made first), said in the panel and on the terminal; a
-// script stops at a failure to write (exit status 4).
-void Viewer::write_output(const std::string& path, const std::function<void()>& write) {
-  try {
-    const auto parent = std::filesystem::path(path).parent_path();
-    std::error_code ec;
-    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-    write();
-    message_ = "wrote " + path;
-    std::printf("wrote %s\n", path.c_str());
-  } catch (const std::exception& e) {
-    message_ = e.what();
-    if (!opt_.script.empty()) {
-      std::fprintf(stderr, "fluidbed: output failed: %s\n", e.what());
-      exit_status_ = 4;
-      quit_ = true;
-    }
-  }
+  say_(said);
+  std::printf("%s\n", said.c_str());
 }
 
 }  // namespace fluidbed::app
