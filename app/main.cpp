@@ -12,6 +12,7 @@
 #include "cli/study.hpp"
 #include "cli/view.hpp"
 #include "core/errors.hpp"
+#include "render/colour_by.hpp"
 #include "sim/checks.hpp"
 
 namespace {
@@ -35,7 +36,9 @@ void add_output_options(CLI::App* cmd, fluidbed::app::OutputArgs& o) {
   cmd->add_option("--montage", o.montage, "write DIR/montage.png of these times: t1,t2,... (s)");
   cmd->add_option("--frame-interval", o.frame_interval, "simulated seconds between frames (0.04)");
   cmd->add_option("--frame-size", o.frame_size, "frame size WxH in pixels (1280x720)");
-  cmd->add_option("--colour", o.colour, "particle colour: speed, force, torque, overlap, height, depth, fixed");
+  cmd->add_option("--colour", o.colour,
+                  "particle colour: " +
+                      fluidbed::render::joined_colour_names(fluidbed::render::colour_by_names()));
   cmd->add_option("--colour-range", o.colour_range, "colour range MIN,MAX (the quantity's unit)");
   cmd->add_flag("--gas-arrows,!--no-gas-arrows", o.gas_arrows, "gas velocity arrows (on)");
   cmd->add_flag("--gas-arrow-colour", o.gas_arrow_colour, "colour gas arrows by speed");

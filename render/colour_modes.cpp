@@ -3,24 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.hpp"
-
 namespace fluidbed::render {
-
-std::vector<std::string> colour_by_names() {
-  return {"speed", "force", "torque", "overlap", "height", "depth", "fixed"};
-}
-
-ColourBy parse_colour_by(const std::string& name) {
-  const auto names = colour_by_names();
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return static_cast<ColourBy>(i);
-  std::string known;
-  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-  throw InputError("unknown colour mode '" + name + "' (known: " + known + ")");
-}
-
-std::string to_string(ColourBy c) { return colour_by_names()[static_cast<std::size_t>(c)]; }
 
 ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double range_max,
                          int height_bands) {

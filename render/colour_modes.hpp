@@ -1,28 +1,14 @@
 #pragma once
 // What a particle's colour shows: one quantity of the snapshot through a colour map over a fixed
 // range (fixed so that a video's colours mean the same in every frame), or one fixed colour.
+// The modes and their names: render/colour_by.hpp.
 #include <string>
-#include <vector>
 
+#include "render/colour_by.hpp"
 #include "render/colour_map.hpp"
 #include "sim/snapshot.hpp"
 
 namespace fluidbed::render {
-
-enum class ColourBy {
-  speed,    // |v| (m/s)
-  force,    // |F| total force: contacts, gravity, gas (N) - Fig. 14c
-  torque,   // |T| (N m) - Fig. 14d
-  overlap,  // largest overlap ratio of the particle's contacts (-) - Fig. 15's measure
-  height,   // initial height, in bands, to watch mixing (m)
-  depth,    // z across the slab from the front wall (m): a thick bed's layers
-  fixed,    // one colour
-};
-
-// "speed", "force", ... ; parse throws InputError listing the known names.
-ColourBy parse_colour_by(const std::string& name);
-std::string to_string(ColourBy c);
-std::vector<std::string> colour_by_names();
 
 struct ColourScale {
   double min = 0.0, max = 1.0;  // value range mapped onto the colour map (unit of the quantity)

@@ -40,4 +40,10 @@ struct RenderSettings {
   BedZoom zoom;
 };
 
+// Colours by `c` over its own range: a range set for another quantity means nothing for it.
+inline void set_colour_by(RenderSettings& rs, ColourBy c) {
+  rs.colour_by = c;
+  rs.range_min = rs.range_max = 0.0;
+}
+
 }  // namespace fluidbed::render

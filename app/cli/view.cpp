@@ -9,14 +9,15 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/view_headless.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "output/frames.hpp"
+#include "render/colour_by.hpp"
 #include "run/umf_estimate.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"
 #include "view/engine.hpp"
+#include "view/headless.hpp"
 #include "view/script.hpp"
 #include "view/window.hpp"
 
@@ -29,9 +30,9 @@ bool has_display() {
   return (x && *x) || (w && *w);
 }
 
-// The panel calls the initial-height colouring "mixing"; `run` calls it "height".
+// The viewer's colour words are taken on the command line too ("mixing": `run`'s "height").
 OutputArgs with_run_names(OutputArgs o) {
-  if (o.colour == "mixing") o.colour = "height";
+  if (const auto c = render::find_colour_by(o.colour)) o.colour = render::to_string(*c);
   return o;
 }
 

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/atomic_file.hpp"
 
 namespace fluidbed::app {
 
@@ -57,6 +61,13 @@ chart::Chart curve_chart(const CurveState& c, double u_max) {
 
 chart::Image curve_image(const CurveState& c, const std::string& font, double u_max) {
   return chart::render(curve_chart(c, u_max), 1200, 750, chart::Font::load({font}));
+}
+
+void write_curve_file(const std::string& path, const CurveState& c, const std::string& font) {
+  if (std::filesystem::path(path).extension() == ".png")
+    curve_image(c, font).write_png(path);
+  else
+    write_file_atomically(path, [&](std::ofstream& out) { write_curve_csv(out, c); });
 }
 
 }  // namespace fluidbed::app

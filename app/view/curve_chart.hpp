@@ -13,5 +13,8 @@ namespace fluidbed::app {
 chart::Chart curve_chart(const CurveState& c, double u_max = 0.0);
 // The chart drawn (1200 x 750 px) with the font file `font`.
 chart::Image curve_image(const CurveState& c, const std::string& font, double u_max = 0.0);
+// The curve saved to `path`: that chart for a .png, else the points as CSV (write_curve_csv,
+// written atomically). Throws when it cannot write.
+void write_curve_file(const std::string& path, const CurveState& c, const std::string& font);
 
 }  // namespace fluidbed::app

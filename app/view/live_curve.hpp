@@ -8,8 +8,8 @@
 // increasing one) or decreasing; a change against the branch's direction starts a new branch
 // from the last point (the turning point belongs to both, as the sweep's top run does). U_mf is
 // fitted to the last decreasing branch with the sweep's fit (analysis/umf_fit.hpp) and shown once
-// that fit finds it inside the branch's range. No threads, no GL: the engine thread and the
-// headless viewer each own one and feed it the simulated time, the held velocity and dp.
+// that fit finds it inside the branch's range. No threads, no GL: the view session
+// (view/session.hpp) owns one and feeds it the simulated time, the held velocity and dp.
 #include <cstdint>
 #include <ostream>
 #include <string>

@@ -124,14 +124,14 @@ void Viewer::draw_top_block() {
   if (ImGui::Button("Reset", ImVec2(button, 0))) post({ViewCommand::Kind::reset, 0.0});
   note_widget("reset_button");
   if (ImGui::Button("Screenshot", ImVec2(button * 1.5f, 0)))
-    screenshot_requests_.push_back(next_name("screenshot", ".png"));
+    capture_.screenshot(next_name("screenshot", ".png"));
   note_widget("screenshot_button");
   ImGui::SameLine();
-  const bool recording = video_ || !record_dir_.empty();
+  const bool recording = capture_.recording();
   if (ImGui::Button(recording ? "Stop recording" : "Record", ImVec2(button * 1.5f, 0))) {
     try {
       if (recording)
-        stop_recording();
+        capture_.stop_recording();
       else
         start_recording(next_name("recording", record_mp4_ ? ".mp4" : ""));
     } catch (const std::exception& e) {
@@ -309,18 +309,14 @@ void Viewer::draw_bed_section() {
 void Viewer::draw_look_section() {
   if (!ImGui::CollapsingHeader("Colours and layers")) return;
   using render::ColourBy;
-  const std::pair<ColourBy, const char*> modes[] = {{ColourBy::speed, "speed"},
-                                                    {ColourBy::force, "force"},
-                                                    {ColourBy::torque, "torque"},
-                                                    {ColourBy::overlap, "overlap"},
-                                                    {ColourBy::height, "mixing"},
-                                                    {ColourBy::depth, "depth"}};
-  for (std::size_t k = 0; k < std::size(modes); ++k) {
+  std::size_t k = 0;  // the viewer's words in the table's order, three to a row
+  for (const render::ColourByName& mode : render::kColourByNames) {
+    if (!render::is_viewer_name(mode)) continue;
     if (k > 0 && k != 3) ImGui::SameLine();
-    if (ImGui::RadioButton(modes[k].second, look_.colour_by == modes[k].first)) {
-      look_.colour_by = modes[k].first;
-      look_.range_min = look_.range_max = 0.0;
-    }
+    ++k;
+    const std::string label(mode.name);
+    if (ImGui::RadioButton(label.c_str(), look_.colour_by == mode.value))
+      render::set_colour_by(look_, mode.value);
   }
   if (snap_)
     colour_bar(render::colour_scale(look_.colour_by, *snap_, look_.range_min, look_.range_max,

@@ -2,7 +2,8 @@
 // The viewer's bubble analysis: the state analysed every [bubbles] interval of simulated time (the
 // cadence `run --bubbles` uses, so tracking and the regime rule see the frames they were made
 // for), the regime of the last second in words, the outlines for the picture, and each bubble's
-// cells for the pointer. Runs on the engine thread between steps; readers get an immutable view.
+// cells for the pointer. Runs between steps in the view session (view/session.hpp: the window's
+// engine thread, or the headless viewer); readers get an immutable view.
 #include <cstdint>
 #include <memory>
 #include <string>

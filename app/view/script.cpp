@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
+#include "render/colour_by.hpp"
 #include "view/presets.hpp"
 
 namespace fluidbed::app {
@@ -161,11 +162,13 @@ ScriptLine parse_line(Reader& r, int line_number) {
     if (l.number < 0.0) r.fail("wait needs seconds >= 0");
   } else if (cmd == "colour" || cmd == "color") {
     l.kind = Kind::colour;
-    l.text = r.word("a colour mode (speed, force, torque, overlap, mixing, depth)");
-    if (l.text != "speed" && l.text != "force" && l.text != "torque" && l.text != "overlap" &&
-        l.text != "mixing" && l.text != "depth")
-      r.fail("unknown colour mode '" + l.text +
-             "' (known: speed, force, torque, overlap, mixing, depth)");
+    l.text = r.word("a colour mode (" +
+                    render::joined_colour_names(render::viewer_colour_names()) + ")");
+    try {
+      (void)render::parse_viewer_colour(l.text);
+    } catch (const InputError& e) {
+      r.fail(e.what());
+    }
   } else if (cmd == "track") {
     l.kind = Kind::track;
     const std::string w = r.word("a particle id or off");

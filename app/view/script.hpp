@@ -16,7 +16,8 @@
 //   run | pause | step [N]     the run switch; N single steps (simulated time moves N dt)
 //   reset                      back to the packed bed (the state at the start, exactly)
 //   wait S                     let the bed run for S wall seconds (if running), then stop
-//   colour MODE                speed, force, torque, overlap, mixing, depth
+//   colour MODE                the viewer's colour words (render/colour_by.hpp): speed, force,
+//                              torque, overlap, mixing (the initial-height bands), depth
 //   gas-arrows on|off   particle-arrows on|off   porosity on|off
 //   bubbles on|off             outlines of the bubbles and jet cavities found ([bubbles])
 //   track ID | track off       follow a particle and draw its path

@@ -1,6 +1,6 @@
 #pragma once
 // One interpreter for view scripts (view/script.hpp), shared by the window (view/window.cpp) and
-// the headless viewer (cli/view.cpp). The runner walks the lines in order: it first has the
+// the headless viewer (view/headless.cpp). The runner walks the lines in order: it first has the
 // target run the engine to a line's `at T`, waits while the target is busy, then hands the
 // command to the target as one call. A new command is a Kind and its words in view/script.*, a
 // method of ScriptTarget here and one case in ScriptRunner::apply; each side then says whether it

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "render/image.hpp"
+
 namespace fluidbed::app {
 namespace {
 
@@ -36,7 +38,11 @@ void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mod
 }  // namespace
 
 Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
-    : engine_(engine), opt_(std::move(options)), look_(opt_.look), script_(opt_.script) {
+    : engine_(engine),
+      opt_(std::move(options)),
+      look_(opt_.look),
+      capture_([this](const std::string& said) { message_ = said; }),
+      script_(opt_.script) {
   context_ = render::make_context("glfw", opt_.width, opt_.height);
   renderer_ = std::make_unique<render::Renderer>(*context_, opt_.font);
   stats_.gl_version = context_->version_string();
@@ -85,7 +91,7 @@ void Viewer::key_event(int key, int action) {
 
 Viewer::~Viewer() {
   try {
-    stop_recording();
+    capture_.stop_recording();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fluidbed view: %s\n", e.what());
   }
@@ -181,7 +187,9 @@ void Viewer::frame() {
   ImGui::Render();
   draw_scene();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  capture_if_requested();
+  capture_.after_frame(*context_, [this](const std::string& path, const render::Image& img) {
+    write_output(path, [&] { render::write_png(path, img); });
+  });
   if (!widgets_file_.empty()) write_widgets();
   draw_seconds_ += seconds_between(t_start, Clock::now());
   context_->present();  // swaps and polls events
@@ -338,19 +346,20 @@ void Viewer::toggle_run() {
   post({pause ? ViewCommand::Kind::pause : ViewCommand::Kind::run, 0.0});
 }
 
+// The panel's buttons in turn (the viewer's colour words, render/colour_by.hpp).
 void Viewer::cycle_colour() {
   using render::ColourBy;
-  static constexpr ColourBy order[] = {ColourBy::speed,   ColourBy::force,  ColourBy::torque,
-                                       ColourBy::overlap, ColourBy::height, ColourBy::depth};
+  std::vector<ColourBy> order;
+  for (const render::ColourByName& mode : render::kColourByNames)
+    if (render::is_viewer_name(mode)) order.push_back(mode.value);
   // A monolayer's depth is one colour (every centre on the mid-plane): the key skips it there.
   const bool thick = snap_ && !snap_->z.empty();
   std::size_t k = 0;
-  while (k < std::size(order) && order[k] != look_.colour_by) ++k;
+  while (k < order.size() && order[k] != look_.colour_by) ++k;
   do {
-    k = (k + 1) % std::size(order);
+    k = (k + 1) % order.size();
   } while (order[k] == ColourBy::depth && !thick);
-  look_.colour_by = order[k];
-  look_.range_min = look_.range_max = 0.0;  // the new quantity's own range
+  render::set_colour_by(look_, order[k]);
 }
 
 // The script (view/script_runner.hpp): the runner calls the commands below one after the
@@ -382,7 +391,7 @@ bool Viewer::busy() {
     post({ViewCommand::Kind::pause, 0.0});
     script_waiting_engine_ = true;
   }
-  return !screenshot_requests_.empty();  // drawn and written first
+  return capture_.screenshot_pending();  // drawn and written first
 }
 
 void Viewer::unsupported(const ScriptLine& l) {
@@ -461,8 +470,7 @@ bool Viewer::wait(double wall_seconds) {
 }
 
 bool Viewer::colour(const std::string& mode) {
-  look_.colour_by = mode == "mixing" ? render::ColourBy::height : render::parse_colour_by(mode);
-  look_.range_min = look_.range_max = 0.0;
+  render::set_colour_by(look_, render::parse_viewer_colour(mode));
   return true;
 }
 
@@ -518,8 +526,8 @@ bool Viewer::zoom(double factor) {
 }
 
 bool Viewer::screenshot(const std::string& file) {
-  screenshot_requests_.push_back(file);
-  settle_frames_ = 2;  // ImGui lays a changed panel out over a frame or two
+  capture_.screenshot(file);
+  capture_.settle(2);  // ImGui lays a changed panel out over a frame or two
   return true;
 }
 
@@ -535,8 +543,12 @@ bool Viewer::record(const std::string& target) {
 }
 
 bool Viewer::record_stop() {
-  stop_recording();
+  capture_.stop_recording();
   return true;
+}
+
+void Viewer::start_recording(const std::string& target) {
+  capture_.start_recording(target, context_->width(), context_->height());
 }
 
 bool Viewer::quit() {

@@ -3,10 +3,10 @@
 // newest snapshot the engine published, draws the bed (renderer) and the panel (ImGui), and sends
 // the panel's edits to the engine as commands. It never waits for the engine, nor the engine for it
 // (a script's `at T` is the one exception: the engine stops at T, the window keeps drawing).
-// window.cpp: the frame, input, zoom and the script; pictures.cpp: screenshots, recordings and
-// saved files; panel.cpp: the panel;
+// window.cpp: the frame, input, zoom and the script; saved_files.cpp: saved files and what the
+// panel says of them; panel.cpp: the panel;
 // panel_plots.cpp: its plots (dp, overlap, the live Fig. 6); overlays.cpp: rings, paths and the
-// bubble under the pointer.
+// bubble under the pointer. Screenshots and recordings of the window: view/capture.hpp.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -20,7 +20,7 @@
 #include "render/picking.hpp"
 #include "render/render_settings.hpp"
 #include "render/renderer.hpp"
-#include "render/video_writer.hpp"
+#include "view/capture.hpp"
 #include "view/engine.hpp"
 #include "view/panel_layout.hpp"
 #include "view/script.hpp"
@@ -97,21 +97,20 @@ class Viewer : private ScriptTarget {
   void draw_curve_plot(float height);
   void draw_particle_info(std::size_t id, bool tooltip);
   void note_widget(const char* name, const std::string& value = "");
+  // saved_files.cpp
   void write_widgets();
-  // window.cpp
-  void step_script();
-  void capture_if_requested();
-  void start_recording(const std::string& target);
-  void stop_recording();
   void save_curve_file(const std::string& path);
   void write_output(const std::string& path, const std::function<void()>& write);
+  std::string next_name(const std::string& stem, const std::string& ext);
+  // window.cpp
+  void step_script();
+  void start_recording(const std::string& target);  // of the window at its size now
   void post(const ViewCommand& c);
   void toggle_run();
   void cycle_colour();
   void set_velocity(double u);
   bool script_runs_the_bed() const;  // from one `at T` to the next
   bool bed_is_running() const;       // what Run / Pause shows: stepping, or a script running it
-  std::string next_name(const std::string& stem, const std::string& ext);
   // Frame pixels (the renderer's frame, in the bed area) <-> window pixels.
   float to_window_x(double fx) const;
   float to_window_y(double fy) const;
@@ -177,16 +176,9 @@ class Viewer : private ScriptTarget {
   std::uint64_t plot_generation_ = 0;
   std::vector<float> plot_t_, plot_dp_, plot_overlap_;
 
-  // Screenshots and recording.
-  std::vector<std::string> screenshot_requests_;
-  int settle_frames_ = 0;  // frames to draw before a scripted screenshot
-  std::unique_ptr<render::VideoWriter> video_;
-  std::string record_dir_;  // PNG frames
-  std::string record_target_;
-  int record_frames_ = 0;
-  int record_frames_w_ = 0, record_frames_h_ = 0;  // px, an MP4's fixed size (even)
-  std::chrono::steady_clock::time_point record_t0_;
-  bool record_mp4_ = true;
+  // Screenshots and recording; the files the panel saves, numbered in the output folder.
+  WindowCapture capture_;
+  bool record_mp4_ = true;  // the panel's choice: an MP4, or PNG frames
   int counter_ = 0;
   std::string message_;  // the last thing written, or a problem
 

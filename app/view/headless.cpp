@@ -1,31 +1,27 @@
-#include "cli/view_headless.hpp"
+#include "view/headless.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
 #include <exception>
 #include <filesystem>
-#include <fstream>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "chart/chart.hpp"
-#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
 #include "render/gl_context.hpp"
 #include "render/image.hpp"
 #include "render/renderer.hpp"
 #include "render/video_writer.hpp"
-#include "sim/checks.hpp"
 #include "view/curve_chart.hpp"
-#include "view/engine.hpp"
-#include "view/live_curve.hpp"
-#include "view/regime_watch.hpp"
 #include "view/script_runner.hpp"
+#include "view/session.hpp"
 
 namespace fluidbed::app {
 namespace {
@@ -230,54 +226,35 @@ class PictureWorker {
 };
 
 // The script's commands without a window (ScriptTarget, view/script_runner.hpp): the gas, the
-// contact law, the live curve's times, captions, the outlines, the colours and layers, saved
-// curves and screenshots act at their simulated times; wait, zoom, track and recordings have no
-// meaning here and say so.
+// contact law, the live curve's times and the reset go to the session as the window's engine
+// thread applies them; captions, the outlines, the colours and layers, saved curves and
+// screenshots act on the pictures at their simulated times; wait, zoom, track and recordings
+// have no meaning here and say so.
 class HeadlessTarget : public ScriptTarget {
  public:
-  HeadlessTarget(ViewModel& model, LiveCurve& curve, RegimeWatch& regime,
-                 render::RenderSettings& look, const HeadlessView& o)
-      : model_(model), curve_(curve), regime_(regime), look_(look), o_(o) {}
+  HeadlessTarget(ViewSession& session, render::RenderSettings& look, const HeadlessView& o)
+      : session_(session), look_(look), o_(o) {}
 
   std::function<void(const std::string&)> screenshot_taker;
 
-  void run_to(double t) override { target_step_ = steps_for(t, model_.sim().settings().time.dt); }
-  bool busy() override { return model_.sim().steps() < target_step_; }
+  void run_to(double t) override {
+    target_step_ = steps_for(t, session_.sim().settings().time.dt);
+  }
+  bool busy() override { return session_.sim().steps() < target_step_; }
   bool stopped() const override { return quit_; }
   void unsupported(const ScriptLine& l) override {
     std::fprintf(stderr, "fluidbed view: headless: script line %d has no effect without a window\n",
                  l.line);
   }
   double umf() const override { return o_.umf; }
-  bool velocity(double u) override {
-    model_.set_velocity(u);
-    curve_.velocity(model_.sim().time(), held());
-    return true;
-  }
-  bool ideal(bool on) override {
-    model_.set_ideal(on);
-    curve_.restart_hold(model_.sim().time());
-    return true;
-  }
-  bool stiffness(double k) override {
-    model_.set_stiffness(k);
-    curve_.restart_hold(model_.sim().time());
-    return true;
-  }
-  bool settle(double s) override {
-    curve_.set_times(model_.sim().time(), s, curve_.state().window);
-    return true;
-  }
-  bool average(double s) override {
-    curve_.set_times(model_.sim().time(), curve_.state().settle, s);
-    return true;
-  }
+  bool velocity(double u) override { return send(ViewCommand::Kind::velocity, u); }
+  bool ideal(bool on) override { return send(ViewCommand::Kind::ideal, on ? 1.0 : 0.0); }
+  bool stiffness(double k) override { return send(ViewCommand::Kind::stiffness, k); }
+  bool settle(double s) override { return send(ViewCommand::Kind::settle, s); }
+  bool average(double s) override { return send(ViewCommand::Kind::average, s); }
+  bool reset() override { return send(ViewCommand::Kind::reset, 0.0); }
   bool save_curve(const std::string& file) override {
-    if (std::filesystem::path(file).extension() == ".png")
-      curve_image(curve_.state(), o_.frames.font).write_png(file);
-    else
-      write_file_atomically(file,
-                            [&](std::ofstream& out) { write_curve_csv(out, curve_.state()); });
+    write_curve_file(file, session_.curve(), o_.frames.font);
     std::printf("wrote %s\n", file.c_str());
     return true;
   }
@@ -285,21 +262,18 @@ class HeadlessTarget : public ScriptTarget {
     look_.caption = text;
     return true;
   }
-  bool reset() override {
-    model_.reset();
-    regime_.restart(model_.sim());
-    curve_.clear(model_.sim().time(), held());
-    return true;
-  }
   bool colour(const std::string& mode) override {
-    look_.colour_by = mode == "mixing" ? render::ColourBy::height : render::parse_colour_by(mode);
-    look_.range_min = look_.range_max = 0.0;
+    render::set_colour_by(look_, render::parse_viewer_colour(mode));
     return true;
   }
   bool gas_arrows(bool on) override { return set(look_.gas_arrows, on); }
   bool particle_arrows(bool on) override { return set(look_.particle_arrows, on); }
   bool porosity(bool on) override { return set(look_.porosity_background, on); }
-  bool bubbles(bool on) override { return set(look_.bubble_outlines, on); }
+  bool bubbles(bool on) override {
+    look_.bubble_outlines = on;
+    // A bed without gas has no bubbles: its pictures carry no outlines.
+    return send(ViewCommand::Kind::bubbles, on && session_.sim().has_gas() ? 1.0 : 0.0);
+  }
   bool screenshot(const std::string& file) override {
     screenshot_taker(file);
     return true;
@@ -314,12 +288,12 @@ class HeadlessTarget : public ScriptTarget {
     flag = on;
     return true;
   }
-  double held() const {
-    return model_.sim().gas() ? model_.sim().gas()->superficial_velocity() : 0.0;
+  // A refused value or a failed rebuild ends the run: the exception leaves view_headless.
+  bool send(ViewCommand::Kind kind, double value) {
+    session_.apply({kind, value});
+    return true;
   }
-  ViewModel& model_;
-  LiveCurve& curve_;
-  RegimeWatch& regime_;
+  ViewSession& session_;
   render::RenderSettings& look_;
   const HeadlessView& o_;
   std::int64_t target_step_ = 0;  // of the last `at T`
@@ -330,10 +304,9 @@ class HeadlessTarget : public ScriptTarget {
 
 int view_headless(const Settings& scene, const ViewScript& script, const HeadlessView& o) {
   namespace fs = std::filesystem;
-  ViewModel model(scene);
-  const Simulation& sim0 = model.sim();
+  ViewSession session(scene);
   const double dt = scene.time.dt;
-  const bool gas = sim0.has_gas();
+  const bool gas = session.sim().has_gas();
   // The end: --until, else the script's quit (at the last time it named), else the scene's end.
   double until = scene.time.end;
   {
@@ -348,10 +321,6 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
   }
   if (o.until >= 0.0) until = o.until;
   const std::int64_t last = steps_for(until, dt);
-  ViewEngine::Options eo;
-  LiveCurve curve(eo.settle, eo.average, check_scene(scene).figures.weight_per_area, sim0.time(),
-                  gas ? sim0.gas()->superficial_velocity() : 0.0);
-  RegimeWatch regime(scene, model.sim());
   render::RenderSettings look = o.frames.look;
   look.caption_band = true;
   std::error_code ec;
@@ -360,21 +329,13 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
   if (ec) throw InputError("cannot create " + o.out + ": " + ec.message());
   PictureWorker pictures(o, gas);
   std::deque<std::pair<double, double>> dp;  // (t, dp) of the last kDpWindow seconds
-  // dp samples every output interval of simulated time, at the steps the engine thread takes
-  // them (ViewEngine::sample_after_step): the live curve is the window's.
-  const double sample_interval =
-      scene.diagnostics.output_interval > 0.0 ? scene.diagnostics.output_interval : 1e-3;
-  double next_sample = sim0.time() + sample_interval;
   const auto picture = [&](int frame, const std::string& file) {
     PictureJob job;
     job.snapshot = std::make_shared<Snapshot>();
-    take_snapshot(model.sim(), *job.snapshot);
-    if (const auto v = regime.view(); v && gas) {
-      look.bed_label = regime_words(*v);
-      if (look.bubble_outlines) job.snapshot->bubble_edges = v->edges;
-    }
+    session.snapshot(*job.snapshot);
+    if (const auto v = session.bubbles(); v && gas) look.bed_label = regime_words(*v);
     job.look = look;
-    job.curve = curve.state();
+    job.curve = session.curve();
     job.dp = dp;
     job.frame = frame;
     job.file = file;
@@ -390,31 +351,27 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
   };
 
   ScriptRunner runner(script.lines);
-  HeadlessTarget target(model, curve, regime, look, o);
+  HeadlessTarget target(session, look, o);
   target.screenshot_taker = [&](const std::string& file) { picture(-1, file); };
+  if (look.bubble_outlines) target.bubbles(true);  // as the window asks its engine
   runner.advance(target);  // the lines before the first `at` act on the first frame
   frame_if_due();
   for (;; runner.advance(target)) {
-    if (target.stopped() || model.sim().steps() >= last) break;
-    Simulation& sim = model.sim();
-    sim.step();  // a SimulationFailure ends the run: exit status 3, nothing more written
+    if (target.stopped() || session.sim().steps() >= last) break;
+    // A SimulationFailure ends the run: exit status 3, nothing more written.
+    const std::optional<PlotSample> sample = session.step();
     ++stepped;
-    regime.after_step(sim);
-    if (sim.time() < next_sample - sample_interval - 0.5 * dt)  // a reset went back in time
-      next_sample = sample_interval * std::floor(sim.time() / sample_interval + 1.0);
-    if (sim.time() + 0.5 * dt >= next_sample && gas) {
-      next_sample += sample_interval;
-      curve.sample(sim.time(), sim.pressure_drop());
-      dp.emplace_back(sim.time(), sim.pressure_drop());
-      while (!dp.empty() && dp.front().first < sim.time() - kDpWindow) dp.pop_front();
+    if (sample && gas) {  // the window's dp against time, its last kDpWindow seconds
+      dp.emplace_back(sample->t, sample->dp);
+      while (!dp.empty() && dp.front().first < sample->t - kDpWindow) dp.pop_front();
     }
     frame_if_due();
   }
   pictures.finish();
   std::printf("wrote %d frames%s%s to %s (t = 0 to %.4g s)\n", frames,
               o.frames.frames ? " (frames/)" : "", o.frames.video ? " and video.mp4" : "",
-              o.out.c_str(), model.sim().time());
-  if (gas) std::printf("%s\n", describe_curve(curve.state()).c_str());
+              o.out.c_str(), session.sim().time());
+  if (gas) std::printf("%s\n", describe_curve(session.curve()).c_str());
   return 0;
 }
 

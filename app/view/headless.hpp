@@ -6,7 +6,6 @@
 // DIR/video.mp4, at 25 frames per second.
 #include <string>
 
-#include "cli/view.hpp"
 #include "output/frames.hpp"
 #include "scene/settings.hpp"
 #include "view/script.hpp"

@@ -1,0 +1,227 @@
+#include "view/session.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/errors.hpp"
+#include "dem/contact_law.hpp"
+#include "run/packed_bed.hpp"
+#include "sim/checks.hpp"
+
+namespace fluidbed::app {
+
+// ---------------------------------------------------------------------------------------------
+// ViewModel
+
+namespace {
+
+// A folder only this process uses, under $TMPDIR (or /tmp).
+std::string private_temp_dir() {
+  const char* base = std::getenv("TMPDIR");
+  std::string pattern = std::string(base && *base ? base : "/tmp") + "/fluidbed-view-XXXXXX";
+  if (!mkdtemp(pattern.data()))
+    throw InputError("cannot create a temporary folder under " +
+                     pattern.substr(0, pattern.rfind('/')) + " for the viewer's starting state");
+  return pattern;
+}
+
+}  // namespace
+
+Settings with_contact(const Settings& scene, bool ideal, double stiffness) {
+  Settings s = scene;
+  if (stiffness > 0.0 && stiffness != scene.contact.stiffness) {
+    if (!std::isfinite(stiffness)) throw InputError("the stiffness must be a finite number of N/m");
+    s.contact.damping =
+        damping_for_stiffness(scene.contact.damping, scene.contact.stiffness, stiffness);
+    s.contact.stiffness = stiffness;
+    const SceneCheck c = check_scene(s);
+    if (!c.refusals.empty()) {
+      char k[64];
+      std::snprintf(k, sizeof k, "%g N/m", stiffness);
+      throw InputError(std::string("stiffness ") + k +
+                       " is refused for this scene: " + c.refusals.front());
+    }
+  }
+  if (ideal) {
+    s.contact.damping = 0.0;
+    s.contact.friction = 0.0;
+  }
+  return s;
+}
+
+ViewModel::ViewModel(const Settings& scene) : scene_(scene), dir_(private_temp_dir()) {
+  try {
+    start_file_ = dir_ + "/start.state";
+    Settings start = scene_;  // the scene as `run` starts it (packed bed from the cache)
+    prepare_packed_bed(start);
+    Simulation first(start);
+    first.save_state(start_file_);
+    // Every simulation of the viewer, the first included, is built the same way (solvers from
+    // the settings, then the saved state), so a run after a reset is the run from the start.
+    sim_ = build();
+    sim_->load_state(start_file_);
+    start_hash_ = sim_->state_hash();
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+    throw;
+  }
+}
+
+ViewModel::~ViewModel() {
+  std::error_code ec;
+  std::filesystem::remove_all(dir_, ec);
+}
+
+std::unique_ptr<Simulation> ViewModel::build() const {
+  Settings s = with_contact(scene_, ideal_, stiffness_);
+  // The particles of the starting state (initial heights for the mixing colours come from it);
+  // the caller then loads the whole state, gas and contact history included.
+  s.particles.placement = Placement::State;
+  s.particles.state_file = start_file_;
+  return std::make_unique<Simulation>(s);
+}
+
+void ViewModel::reset() {
+  auto fresh = build();
+  fresh->load_state(start_file_);
+  sim_ = std::move(fresh);
+}
+
+void ViewModel::set_velocity(double u) {
+  sim_->set_superficial_velocity(std::max(0.0, u));
+}
+
+void ViewModel::set_ideal(bool on) {
+  if (on != ideal_) rebuild_keeping_state(on, stiffness_);
+}
+
+void ViewModel::set_stiffness(double k) {
+  if (k == scene_.contact.stiffness) k = 0.0;
+  if (k != stiffness_) rebuild_keeping_state(ideal_, k);
+}
+
+double ViewModel::stiffness() const {
+  return stiffness_ > 0.0 ? stiffness_ : scene_.contact.stiffness;
+}
+
+void ViewModel::rebuild_keeping_state(bool ideal, double stiffness) {
+  const bool old_ideal = ideal_;
+  const double old_stiffness = stiffness_;
+  ideal_ = ideal;
+  stiffness_ = stiffness;
+  try {
+    auto next = build();  // refuses a stiffness the step cannot take before anything changes
+    const std::string now = dir_ + "/switch.state";
+    sim_->save_state(now);
+    next->load_state(now);
+    sim_ = std::move(next);
+  } catch (...) {
+    ideal_ = old_ideal;
+    stiffness_ = old_stiffness;
+    throw;
+  }
+}
+
+double ViewModel::inlet_jet_velocity() const {
+  const GasSolver* g = sim_->gas();
+  if (!g) return 0.0;
+  const auto& v = g->v();
+  const auto nx = static_cast<std::size_t>(g->grid().nx);
+  return v.empty() ? 0.0
+                   : *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(nx));
+}
+
+// ---------------------------------------------------------------------------------------------
+// ViewSession
+
+ViewSession::ViewSession(const Settings& scene, double settle, double average)
+    : model_(scene),
+      curve_(settle, average, check_scene(scene).figures.weight_per_area, model_.sim().time(),
+             held_velocity()),
+      regime_(scene, model_.sim()) {
+  sample_interval_ =
+      scene.diagnostics.output_interval > 0.0 ? scene.diagnostics.output_interval : 1e-3;
+  next_sample_ = model_.sim().time() + sample_interval_;
+}
+
+double ViewSession::held_velocity() const {
+  const GasSolver* g = model_.sim().gas();
+  return g ? g->superficial_velocity() : 0.0;
+}
+
+void ViewSession::apply(const ViewCommand& c) {
+  using K = ViewCommand::Kind;
+  const Simulation& sim = model_.sim();
+  switch (c.kind) {
+    case K::run:
+    case K::pause:
+    case K::step:
+    case K::run_until:
+      break;
+    case K::reset:
+      model_.reset();
+      regime_.restart(model_.sim());  // tracking starts again with the bed
+      curve_.clear(model_.sim().time(), held_velocity());
+      next_sample_ = model_.sim().time() + sample_interval_;
+      interval_overlap_ = 0.0;
+      break;
+    case K::velocity:
+      model_.set_velocity(c.value);
+      curve_.velocity(sim.time(), held_velocity());
+      break;
+    case K::ideal:
+      model_.set_ideal(c.value != 0.0);
+      curve_.restart_hold(model_.sim().time());
+      break;
+    case K::stiffness:
+      model_.set_stiffness(c.value);
+      curve_.restart_hold(model_.sim().time());
+      break;
+    case K::bubbles:
+      bubbles_on_ = c.value != 0.0;
+      break;
+    case K::settle:
+      curve_.set_times(sim.time(), c.value, curve_.state().window);
+      break;
+    case K::average:
+      curve_.set_times(sim.time(), curve_.state().settle, c.value);
+      break;
+  }
+}
+
+std::optional<PlotSample> ViewSession::step() {
+  Simulation& sim = model_.sim();
+  sim.step();
+  regime_.after_step(sim);
+  interval_overlap_ = std::max(interval_overlap_, sim.dem().diagnostics().max_overlap_ratio);
+  if (sim.time() + 0.5 * sim.settings().time.dt < next_sample_) return std::nullopt;
+  next_sample_ += sample_interval_;
+  if (sim.has_gas()) curve_.sample(sim.time(), sim.pressure_drop());
+  const PlotSample s{sim.time(), sim.pressure_drop(), interval_overlap_};
+  interval_overlap_ = 0.0;
+  return s;
+}
+
+void ViewSession::snapshot(Snapshot& snap) const {
+  take_snapshot(model_.sim(), snap);
+  const std::shared_ptr<const BubbleView> v = regime_.view();
+  if (!bubbles_on_ || !v) {
+    snap.void_fraction.clear();
+    snap.bubble_edges.clear();
+    return;
+  }
+  snap.void_nx = v->grid.nx;
+  snap.void_ny = v->grid.ny;
+  snap.void_dx = v->grid.dx;
+  snap.void_dy = v->grid.dy;
+  snap.void_fraction = v->void_fraction;
+  snap.bubble_edges = v->edges;
+}
+
+}  // namespace fluidbed::app
