@@ -1,6 +1,7 @@
 // Bubble statistics over a window, the regime rule, the history's checkpoint, and the rows of
-// bubbles.csv. Detection and tracking are in bubbles.cpp; analysis/bubbles.hpp says what each
-// means.
+// bubbles.csv (analysis/bubble_statistics.hpp says what each means).
+#include "analysis/bubble_statistics.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
@@ -10,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "analysis/bubbles.hpp"
 #include "core/binary_io.hpp"
 
 namespace fluidbed {
