@@ -77,7 +77,7 @@ FrameOutput::FrameOutput(std::string out_dir, FrameOptions options, const Simula
     saved_.vtk.void_fraction = src.get<std::int32_t>() != 0;
     saved_.video_parts = src.get<std::int32_t>();
     if (src.get<std::int32_t>() != (bubbles_ ? 1 : 0)) src.fail("inconsistent (bubble outlines)");
-    if (bubbles_) bubbles_->load(in, p);
+    if (bubbles_) bubbles_->restore(src);
     stats_ = saved_.stats;
     // Parts of the video a stopped process wrote after its last checkpoint are written again.
     std::error_code ec;
@@ -229,7 +229,7 @@ void FrameOutput::checkpoint(const std::string& folder) {
   put(out, static_cast<std::int32_t>(s.vtk.void_fraction));
   put(out, static_cast<std::int32_t>(s.video_parts));
   put(out, static_cast<std::int32_t>(bubbles_ ? 1 : 0));
-  if (bubbles_) bubbles_->save(out);
+  if (bubbles_) { BinarySink sink(out); bubbles_->save(sink); }
   out.flush();
   if (!out) throw InputError("cannot write " + p);
 }

@@ -19,14 +19,13 @@
 //   fixed     - no bubble was formed and no slug seen in the window (the bed does not bubble:
 //               below minimum fluidization a stable jet cavity may stand, but nothing detaches);
 //   bubbling  - otherwise.
-#include <istream>
 #include <ostream>
-#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "analysis/bubble_types.hpp"
+#include "core/binary_io.hpp"
 
 namespace fluidbed {
 
@@ -71,6 +70,11 @@ struct BubbleHistory {
     bool slug = false;        // a slug present
     bool spout = false;       // the jet cavity reaches the freeboard
     bool jet_cavity = false;  // a jet cavity present
+
+    template <class Archive>
+    void fields(Archive& a) {
+      a(t, dt, slug, spout, jet_cavity);
+    }
   };
   struct Sample {    // one bubble in one frame, or one that ended there
     double t = 0.0;  // s
@@ -82,6 +86,12 @@ struct BubbleHistory {
     int merged_id = -1;  // event coalesced: the largest other parent
     bool ended = false;  // an erupted or vanished bubble's last record (not a bubble-frame)
     BubbleEvent event = BubbleEvent::none;
+
+    template <class Archive>
+    void fields(Archive& a) {
+      a(t, d_eq, vx, vy, id, merged_id, has_velocity, from_jet, ended, event);
+      a.check(event <= BubbleEvent::vanished, "bubble event");
+    }
   };
   std::vector<Frame> frames;    // in time order
   std::vector<Sample> samples;  // in time order
@@ -94,8 +104,14 @@ struct BubbleHistory {
   BubbleStatistics summarize(double t_from, double t_to, const BubbleSettings& s,
                              double gravity) const;
 
-  void save(std::ostream& out) const;
-  void load(std::istream& in, const std::string& origin);
+  // Its state, for a checkpoint (core/binary_io.hpp).
+  template <class Archive>
+  void fields(Archive& a) {
+    a.tag("FLBHIS02", "bubble history");
+    a(frames, samples, id_frames);
+  }
+  void save(BinarySink& out) const { out(*this); }
+  void restore(BinarySource& in) { in(*this); }
 };
 
 // summary.json's `bubbles` object: the keys of BubbleStatistics with units in their names

@@ -4,11 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <stdexcept>
 #include <tuple>
-
-#include "core/binary_io.hpp"
 
 namespace fluidbed {
 
@@ -179,67 +176,6 @@ void BubbleTracker::track(BubbleFrame& frame) {
     frame.ended.push_back(e);
   }
   prev_ = frame;
-}
-
-namespace {
-
-void put_bubble(std::ostream& out, const Bubble& b) {
-  put(out, b.id);
-  put(out, b.merged_id);
-  for (double v : {b.x, b.y, b.area, b.d_eq, b.width, b.height, b.aspect_ratio, b.vx, b.vy,
-                   b.d_eq_max, b.roof})
-    put(out, v);
-  for (int v : {b.cells, b.i_min, b.i_max, b.j_min, b.j_max}) put(out, v);
-  for (bool v : {b.touches_wall, b.touches_jet, b.slug, b.has_velocity, b.from_jet})
-    put(out, static_cast<std::uint8_t>(v));
-  put(out, static_cast<std::uint8_t>(b.event));
-}
-
-Bubble get_bubble(BinarySource& in) {
-  Bubble b;
-  b.id = in.get<int>();
-  b.merged_id = in.get<int>();
-  for (double* v : {&b.x, &b.y, &b.area, &b.d_eq, &b.width, &b.height, &b.aspect_ratio, &b.vx,
-                    &b.vy, &b.d_eq_max, &b.roof})
-    *v = in.get<double>();
-  for (int* v : {&b.cells, &b.i_min, &b.i_max, &b.j_min, &b.j_max}) *v = in.get<int>();
-  for (bool* v : {&b.touches_wall, &b.touches_jet, &b.slug, &b.has_velocity, &b.from_jet})
-    *v = in.get<std::uint8_t>() != 0;
-  const auto e = in.get<std::uint8_t>();
-  if (e > static_cast<std::uint8_t>(BubbleEvent::vanished)) in.fail("inconsistent (bubble event)");
-  b.event = static_cast<BubbleEvent>(e);
-  return b;
-}
-
-constexpr std::uint32_t kTrackerMagic = 0x42554231;   // "BUB1"
-
-}  // namespace
-
-void BubbleTracker::save(std::ostream& out) const {
-  put(out, kTrackerMagic);
-  put(out, static_cast<std::uint8_t>(has_prev_));
-  put(out, next_id_);
-  put(out, prev_.t);
-  put(out, static_cast<std::uint8_t>(prev_.spout));
-  put(out, static_cast<std::uint64_t>(prev_.regions.size()));
-  for (const Bubble& b : prev_.regions) put_bubble(out, b);
-  put_vec(out, prev_.label);
-  put_vec(out, prev_.surface);
-}
-
-void BubbleTracker::load(std::istream& in_stream, const std::string& origin) {
-  BinarySource in(in_stream, origin);
-  if (in.get<std::uint32_t>() != kTrackerMagic) in.fail("inconsistent (bubble tracker)");
-  has_prev_ = in.get<std::uint8_t>() != 0;
-  next_id_ = in.get<int>();
-  prev_ = BubbleFrame{};
-  prev_.t = in.get<double>();
-  prev_.spout = in.get<std::uint8_t>() != 0;
-  const auto n = in.get<std::uint64_t>();
-  if (n > static_cast<std::uint64_t>(grid_.cells())) in.fail("inconsistent (bubble count)");
-  for (std::uint64_t k = 0; k < n; ++k) prev_.regions.push_back(get_bubble(in));
-  in.get_vec(prev_.label, has_prev_ ? grid_.cells() : -1);
-  in.get_vec(prev_.surface, has_prev_ ? grid_.nx : -1);
 }
 
 }  // namespace fluidbed

@@ -24,13 +24,12 @@
 //   - velocity (vx, vy: centroid displacement over the time between frames) only for a clean
 //     one-to-one match of the same kind: a coalescence, a split or a detachment moves the
 //     centroid without moving the gas, so those rows have no velocity.
-#include <istream>
-#include <ostream>
-#include <string>
+#include <cstddef>
 #include <vector>
 
 #include "analysis/bubble_types.hpp"
 #include "analysis/void_fraction.hpp"
+#include "core/binary_io.hpp"
 
 namespace fluidbed {
 
@@ -43,8 +42,21 @@ class BubbleTracker {
   void track(BubbleFrame& frame);
   const BubbleFrame* previous() const { return has_prev_ ? &prev_ : nullptr; }
 
-  void save(std::ostream& out) const;
-  void load(std::istream& in, const std::string& origin);
+  // Its state (the previous frame and the next id), for a checkpoint (core/binary_io.hpp).
+  // restore expects a tracker built for the same grid that has not tracked yet, and refuses a
+  // state whose arrays do not fit the grid.
+  template <class Archive>
+  void fields(Archive& a) {
+    a.tag("FLBTRK02", "bubble tracker");
+    a(has_prev_, next_id_, prev_.t, prev_.spout, prev_.regions, prev_.label, prev_.surface);
+    const auto cells = static_cast<std::size_t>(grid_.cells());
+    a.check(prev_.regions.size() <= cells, "bubble count");
+    a.check(!has_prev_ || (prev_.label.size() == cells &&
+                           prev_.surface.size() == static_cast<std::size_t>(grid_.nx)),
+            "array sizes");
+  }
+  void save(BinarySink& out) const { out(*this); }
+  void restore(BinarySource& in) { in(*this); }
 
  private:
   BubbleSettings s_;

@@ -81,6 +81,14 @@ struct Bubble {
   bool from_jet = false;      // event formed: detached from the jet cavity (not appeared)
   BubbleEvent event = BubbleEvent::none;
   int merged_id = -1;  // event coalesced: the id of the largest other parent
+
+  // Its saved state (core/binary_io.hpp).
+  template <class Archive>
+  void fields(Archive& a) {
+    a(id, merged_id, x, y, area, d_eq, width, height, aspect_ratio, vx, vy, d_eq_max, roof, cells,
+      i_min, i_max, j_min, j_max, touches_wall, touches_jet, slug, has_velocity, from_jet, event);
+    a.check(event <= BubbleEvent::vanished, "bubble event");
+  }
 };
 
 // Labels of the fine cells (BubbleFrame::label): an index into BubbleFrame::regions, or one of

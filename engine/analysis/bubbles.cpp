@@ -2,17 +2,12 @@
 // tracking and the history, in that order.
 #include "analysis/bubbles.hpp"
 
-#include <cstdint>
 #include <limits>
 #include <stdexcept>
-
-#include "core/binary_io.hpp"
 
 namespace fluidbed {
 
 namespace {
-constexpr std::uint32_t kAnalysisMagic = 0x42554841;  // "BUHA"
-
 const BubbleSettings& checked(const BubbleSettings& s, const BedGeometry& g) {
   validate(s, g);
   return s;
@@ -48,23 +43,6 @@ BubbleStatistics BubbleAnalysis::statistics(double averaging_start) const {
 
 Regime BubbleAnalysis::regime(double t_from, double t_to) const {
   return history_.summarize(t_from, t_to, s_, g_.gravity).regime;
-}
-
-void BubbleAnalysis::save(std::ostream& out) const {
-  put(out, kAnalysisMagic);
-  tracker_.save(out);
-  put(out, static_cast<std::uint8_t>(started_));
-  put(out, last_t_);
-  history_.save(out);
-}
-
-void BubbleAnalysis::load(std::istream& in_stream, const std::string& origin) {
-  BinarySource in(in_stream, origin);
-  if (in.get<std::uint32_t>() != kAnalysisMagic) in.fail("inconsistent (bubble analysis)");
-  tracker_.load(in_stream, origin);
-  started_ = in.get<std::uint8_t>() != 0;
-  last_t_ = in.get<double>();
-  history_.load(in_stream, origin);
 }
 
 }  // namespace fluidbed

@@ -10,9 +10,6 @@
 //   analysis/bubble_tracker.hpp     tracking: ids, velocities and events from frame to frame
 //   analysis/bubble_statistics.hpp  the history of a run, the statistics over a window, the
 //                                   regime, summary.json's `bubbles` and bubbles.csv
-#include <istream>
-#include <ostream>
-#include <string>
 #include <vector>
 
 #include "analysis/bubble_detector.hpp"
@@ -20,6 +17,7 @@
 #include "analysis/bubble_tracker.hpp"
 #include "analysis/bubble_types.hpp"
 #include "analysis/void_fraction.hpp"
+#include "core/binary_io.hpp"
 #include "dem/particles.hpp"
 
 namespace fluidbed {
@@ -47,10 +45,16 @@ class BubbleAnalysis {
   // (found by bisection), so call it once per frame, not per timeseries row.
   Regime regime(double t_from, double t_to) const;
 
-  // Checkpoints: the tracker and the history (the void fraction and the frame are rebuilt by
-  // the next analyse()).
-  void save(std::ostream& out) const;
-  void load(std::istream& in, const std::string& origin);
+  // Its state for a checkpoint (core/binary_io.hpp): the tracker and the history (the void
+  // fraction and the frame are rebuilt by the next analyse()). restore expects an analysis built
+  // with the same settings and geometry that has not analysed yet.
+  template <class Archive>
+  void fields(Archive& a) {
+    a.tag("FLBBUB02", "bubble analysis");
+    a(tracker_, started_, last_t_, history_);
+  }
+  void save(BinarySink& out) const { out(*this); }
+  void restore(BinarySource& in) { in(*this); }
 
  private:
   BubbleSettings s_;

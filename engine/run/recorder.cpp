@@ -259,8 +259,8 @@ void RunRecorder::save(std::ostream& out) const {
   put(out, ledger_start_);
   put_vec(out, rows_);
   put(out, pending_);
-  if (bounces_) bounces_->save(out);
-  if (bubbles_) bubbles_->save(out);
+  if (bounces_) { BinarySink sink(out); bounces_->save(sink); }
+  if (bubbles_) { BinarySink sink(out); bubbles_->save(sink); }
 }
 
 void RunRecorder::restore(BinarySource& in) {
@@ -293,7 +293,7 @@ void RunRecorder::restore(BinarySource& in) {
   ledger_start_ = in.get<EnergyLedger>();
   in.get_vec(rows_);
   pending_ = in.get<TimeseriesRow>();
-  if (bounces_) bounces_->load(in);
+  if (bounces_) bounces_->restore(in);
   if (bubbles_) bubbles_->restore(in);
 }
 
