@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/simd.hpp"
+
 namespace fluidbed {
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) void classify_pairs(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-    std::int64_t k0, std::int64_t k1, std::uint8_t* code) {
+FLUIDBED_SIMD_CLONES void classify_pairs(const PairKernelParticles& p, const std::int32_t* li,
+                                         const std::int32_t* lj, std::int64_t k0, std::int64_t k1,
+                                         std::uint8_t* code) {
   const double *x = p.x, *y = p.y, *r = p.r;
 #pragma omp simd
   for (std::int64_t k = k0; k < k1; ++k) {
@@ -85,17 +87,19 @@ __attribute__((always_inline)) inline void contacts_loop(
 
 }  // namespace
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) static void contacts_incremental(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-    const double* ldn, const double* lds, const std::int32_t* on, std::int64_t count,
-    const ContactParams& params, double dtau, const PairContactOut& out) {
+FLUIDBED_SIMD_CLONES static void contacts_incremental(
+    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj, const double* ldn,
+    const double* lds, const std::int32_t* on, std::int64_t count, const ContactParams& params,
+    double dtau, const PairContactOut& out) {
   contacts_loop<true>(p, li, lj, ldn, lds, on, count, params, dtau, out);
 }
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) static void contacts_geometric(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-    const double* ldn, const double* lds, const std::int32_t* on, std::int64_t count,
-    const ContactParams& params, double dtau, const PairContactOut& out) {
+FLUIDBED_SIMD_CLONES static void contacts_geometric(const PairKernelParticles& p,
+                                                    const std::int32_t* li, const std::int32_t* lj,
+                                                    const double* ldn, const double* lds,
+                                                    const std::int32_t* on, std::int64_t count,
+                                                    const ContactParams& params, double dtau,
+                                                    const PairContactOut& out) {
   contacts_loop<false>(p, li, lj, ldn, lds, on, count, params, dtau, out);
 }
 
