@@ -62,7 +62,7 @@ FrameOutput::FrameOutput(std::string out_dir, FrameOptions options, const Simula
     bool outlines = false;
     src(outlines);
     if (outlines != (bubbles_ != nullptr)) src.fail("inconsistent (bubble outlines)");
-    if (bubbles_) bubbles_->load(in, p);
+    if (bubbles_) bubbles_->restore(src);
     stats_ = saved_.stats;
     // Parts of the video a stopped process wrote after its last checkpoint are written again.
     std::error_code ec;
@@ -206,7 +206,7 @@ void FrameOutput::checkpoint(const std::string& folder) {
   s.stats.snapshot_s = stats_.snapshot_s;
   s.stats.wait_s = stats_.wait_s;
   sink(s, bubbles_ != nullptr);
-  if (bubbles_) bubbles_->save(out);
+  if (bubbles_) bubbles_->save(sink);
   out.flush();
   if (!out) throw InputError("cannot write " + p);
 }

@@ -47,22 +47,15 @@ class BounceTracker {
   const std::vector<double>& restitutions() const { return restitutions_; }
   double drop_height() const { return drop_height_; }
 
-  // Its state as bytes and back (a run's checkpoint, run/checkpoint.hpp).
-  void save(std::ostream& out) const {
-    for (double v : {g_, drop_height_, last_gap_, last_vy_, impact_speed_, apex_}) put(out, v);
-    put(out, static_cast<std::int32_t>(in_contact_));
-    put(out, static_cast<std::int32_t>(bounces_));
-    put_vec(out, restitutions_);
-    put_vec(out, apex_heights_);
+  // Its state, for a run's checkpoint (run/checkpoint.hpp, core/binary_io.hpp).
+  template <class Archive>
+  void fields(Archive& a) {
+    a.tag("FLBBNC02", "bounce tracker");
+    a(g_, drop_height_, last_gap_, last_vy_, impact_speed_, apex_, in_contact_, bounces_,
+      restitutions_, apex_heights_);
   }
-  void load(BinarySource& in) {
-    for (double* v : {&g_, &drop_height_, &last_gap_, &last_vy_, &impact_speed_, &apex_})
-      *v = in.get<double>();
-    in_contact_ = in.get<std::int32_t>() != 0;
-    bounces_ = in.get<std::int32_t>();
-    in.get_vec(restitutions_);
-    in.get_vec(apex_heights_);
-  }
+  void save(BinarySink& out) const { out(*this); }
+  void restore(BinarySource& in) { in(*this); }
 
  private:
   void record(const DemSolver& dem) {

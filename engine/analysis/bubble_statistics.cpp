@@ -1,17 +1,14 @@
-// Bubble statistics over a window, the regime rule, the history's checkpoint, and the rows of
-// bubbles.csv. Detection and tracking are in bubbles.cpp; analysis/bubbles.hpp says what each
-// means.
+// Bubble statistics over a window, the regime rule and the rows of bubbles.csv
+// (analysis/bubble_statistics.hpp says what each means).
+#include "analysis/bubble_statistics.hpp"
+
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <ostream>
 #include <string>
 #include <vector>
-
-#include "analysis/bubbles.hpp"
-#include "core/binary_io.hpp"
 
 namespace fluidbed {
 
@@ -154,55 +151,6 @@ BubbleStatistics BubbleHistory::summarize(double t_from, double t_to, const Bubb
   st.jet_cavity_fraction = st.frames > 0 ? jet_frames / n : 0.0;
   st.regime = classify_regime(st, s);
   return st;
-}
-
-void BubbleHistory::save(std::ostream& out) const {
-  put(out, static_cast<std::uint64_t>(frames.size()));
-  for (const Frame& f : frames) {
-    put(out, f.t);
-    put(out, f.dt);
-    for (bool v : {f.slug, f.spout, f.jet_cavity}) put(out, static_cast<std::uint8_t>(v));
-  }
-  put(out, static_cast<std::uint64_t>(samples.size()));
-  for (const Sample& q : samples) {
-    for (double v : {q.t, q.d_eq, q.vx, q.vy}) put(out, v);
-    put(out, q.id);
-    put(out, q.merged_id);
-    for (bool v : {q.has_velocity, q.from_jet, q.ended}) put(out, static_cast<std::uint8_t>(v));
-    put(out, static_cast<std::uint8_t>(q.event));
-  }
-  put_vec(out, id_frames);
-}
-
-void BubbleHistory::load(std::istream& in_stream, const std::string& origin) {
-  BinarySource in(in_stream, origin);
-  const auto count = [&] {
-    const auto n = in.get<std::uint64_t>();
-    if (n > (1ULL << 32)) in.fail("inconsistent (bubble history)");
-    return n;
-  };
-  frames.clear();
-  samples.clear();
-  for (std::uint64_t k = count(); k > 0; --k) {
-    Frame f;
-    f.t = in.get<double>();
-    f.dt = in.get<double>();
-    for (bool* v : {&f.slug, &f.spout, &f.jet_cavity}) *v = in.get<std::uint8_t>() != 0;
-    frames.push_back(f);
-  }
-  for (std::uint64_t k = count(); k > 0; --k) {
-    Sample q;
-    for (double* v : {&q.t, &q.d_eq, &q.vx, &q.vy}) *v = in.get<double>();
-    q.id = in.get<int>();
-    q.merged_id = in.get<int>();
-    for (bool* v : {&q.has_velocity, &q.from_jet, &q.ended}) *v = in.get<std::uint8_t>() != 0;
-    const auto e = in.get<std::uint8_t>();
-    if (e > static_cast<std::uint8_t>(BubbleEvent::vanished))
-      in.fail("inconsistent (bubble event)");
-    q.event = static_cast<BubbleEvent>(e);
-    samples.push_back(q);
-  }
-  in.get_vec(id_frames);
 }
 
 nlohmann::json to_json(const BubbleStatistics& st) {

@@ -166,8 +166,9 @@ GasSolver::GasSolver(const GasGrid& grid, const GasParams& params)
 }
 
 double GasSolver::jet_velocity() const {
-  return params_.inlet == InletKind::Jet ? s_.superficial_velocity * grid_.width / (params_.jets * params_.jet_width)
-                                : s_.superficial_velocity;
+  return params_.inlet == InletKind::Jet ? jet_slot_velocity(s_.superficial_velocity, grid_.width,
+                                                             params_.jets, params_.jet_width)
+                                         : s_.superficial_velocity;
 }
 
 void GasSolver::set_superficial_velocity(double u) {

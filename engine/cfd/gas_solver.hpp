@@ -87,6 +87,14 @@ struct GasParams {
   bool wall_force_to_interior = true;
 };
 
+// m/s: the gas speed through the slots of a jet inlet, `jets` slots of jet_width (m) each in a
+// bottom of `width` (m) that carry the superficial velocity u (m/s, the mean over the whole
+// bottom): u width / (jets jet_width). The one place this is computed (the gas solver's inlet,
+// the scene checks, the OpenFOAM case).
+inline double jet_slot_velocity(double u, double width, int jets, double jet_width) {
+  return u * width / (jets * jet_width);
+}
+
 // Throws InputError naming the field when the parameters or the grid are impossible.
 void validate_gas(const GasGrid& grid, const GasParams& params);
 

@@ -13,9 +13,19 @@
 // A field is a trivially copyable value (written as its bytes; bool as one byte), a std::vector
 // of them (its length, then its elements), a std::vector of a class that has fields() itself, such
 // a class, or a std::optional of any of these (a flag, then the value; read back, the optional
-// must already be engaged or not as it was saved: the object is built for the same run). BinarySink writes; BinarySource reads the same list back with
-// checks that name the file when it is truncated or inconsistent. `tag` marks a section with its
-// name and version: a file written by another version is refused in one line.
+// must already be engaged or not as it was saved: the object is built for the same run).
+// BinarySink writes; BinarySource reads the same list back with checks that name the file when it
+// is truncated or inconsistent. `tag` marks a section with its
+// name and version: a file written by another version is refused in one line. Both archives take
+// the same calls, so that a class's fields() may hold its tag and its checks too, and holds them
+// wherever it is saved (on its own or as a field of another):
+//
+//   template <class Archive>
+//   void fields(Archive& a) {
+//     a.tag("FLBTRK02", "bubble tracker");
+//     a(has_prev_, label_);
+//     a.check(!has_prev_ || label_.size() == cells, "array sizes");  // read back: refused
+//   }
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -70,6 +80,10 @@ class BinarySink {
     std::memcpy(t, name, std::min<std::size_t>(std::strlen(name), sizeof t));
     out_.write(t, sizeof t);
   }
+  // The same, in the form fields() calls for both archives (what: the section's name in words).
+  void tag(const char* name, const char* /*what*/) { tag(name); }
+  // A consistency check of what is read back (BinarySource::check); nothing to do when writing.
+  void check(bool /*ok*/, const char* /*what*/) {}
   std::ostream& stream() { return out_; }
 
  private:
@@ -139,6 +153,10 @@ class BinarySource {
            "): run it again from its start");
     fail(std::string("not a ") + what + "'s");
   }
+  // Refuses the file as inconsistent (`what`: which part) unless ok.
+  void check(bool ok, const char* what) {
+    if (!ok) fail(std::string("inconsistent (") + what + ")");
+  }
 
   [[noreturn]] void fail(const std::string& what) const {
     throw InputError(origin_ + ": state file is " + what);
@@ -174,7 +192,7 @@ class BinarySource {
   }
 
   std::istream& in_;
-  const std::string& origin_;
+  std::string origin_;  // a copy: a source may outlive the string it was named with
 };
 
 }  // namespace fluidbed

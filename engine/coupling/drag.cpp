@@ -2,6 +2,8 @@
 
 #include <numbers>
 
+#include "core/simd.hpp"
+
 namespace fluidbed {
 
 namespace {
@@ -10,9 +12,9 @@ double sphere_volume(double R) {
 }
 }  // namespace
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) void di_felice_beta_many(
-    std::size_t n, const double* R, const double* eps, const double* ln_eps, const double* slip,
-    double rho_f, double mu_f, double* beta) {
+FLUIDBED_SIMD_CLONES void di_felice_beta_many(std::size_t n, const double* R, const double* eps,
+                                              const double* ln_eps, const double* slip,
+                                              double rho_f, double mu_f, double* beta) {
 #pragma omp simd
   for (std::size_t i = 0; i < n; ++i)
     beta[i] = di_felice_beta_ln(R[i], rho_f, mu_f, eps[i], ln_eps[i], slip[i]);

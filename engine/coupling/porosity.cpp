@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/simd.hpp"
+
 namespace fluidbed {
 
 namespace {
@@ -140,9 +142,8 @@ inline double cap_volume_select(double R, double a, bool crossed) {
 
 }  // namespace
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) void share_geometry(
-    const GasGrid& g, std::size_t n, const double* x, const double* y, const double* R,
-    ShareGeometry& out) {
+FLUIDBED_SIMD_CLONES void share_geometry(const GasGrid& g, std::size_t n, const double* x,
+                                         const double* y, const double* R, ShareGeometry& out) {
   const double dx = g.dx(), dy = g.dy();
   const int nx = g.nx, ny = g.ny;
   int* cell = out.cell.data();

@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/simd.hpp"
+
 namespace fluidbed {
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) void classify_pairs(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-    std::int64_t k0, std::int64_t k1, std::uint8_t* code) {
+namespace {
+
+// The loops, inlined into each entry point below: the clones the loader chooses between
+// (FLUIDBED_SIMD_CLONES) and the builds for one instruction set each (classify_pairs_on,
+// pair_contacts_on), so that all are the same source compiled in this file with its flags.
+__attribute__((always_inline)) inline void classify_loop(const PairKernelParticles& p,
+                                                         const std::int32_t* li,
+                                                         const std::int32_t* lj, std::int64_t k0,
+                                                         std::int64_t k1, std::uint8_t* code) {
   const double *x = p.x, *y = p.y, *r = p.r;
 #pragma omp simd
   for (std::int64_t k = k0; k < k1; ++k) {
@@ -21,10 +29,8 @@ __attribute__((target_clones("avx512f", "avx2", "default"))) void classify_pairs
   }
 }
 
-namespace {
-
-// The loop, inlined into each entry point below (one per displacement form: a choice inside the
-// loop would keep the compiler from vectorising it).
+// One loop per displacement form (a choice inside the loop would keep the compiler from
+// vectorising it).
 template <bool Incremental>
 __attribute__((always_inline)) inline void contacts_loop(
     const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
@@ -82,21 +88,77 @@ __attribute__((always_inline)) inline void contacts_loop(
   }
 }
 
+// Both forms, the choice outside the loops (the builds for one instruction set each).
+__attribute__((always_inline)) inline void contacts_either(
+    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj, const double* ldn,
+    const double* lds, const std::int32_t* on, std::int64_t count, const ContactParams& params,
+    bool incremental, double dtau, const PairContactOut& out) {
+  if (incremental) {
+    contacts_loop<true>(p, li, lj, ldn, lds, on, count, params, dtau, out);
+  } else {
+    contacts_loop<false>(p, li, lj, ldn, lds, on, count, params, dtau, out);
+  }
+}
 
-}  // namespace
-
-__attribute__((target_clones("avx512f", "avx2", "default"))) static void contacts_incremental(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-    const double* ldn, const double* lds, const std::int32_t* on, std::int64_t count,
-    const ContactParams& params, double dtau, const PairContactOut& out) {
+FLUIDBED_SIMD_CLONES void contacts_incremental(const PairKernelParticles& p, const std::int32_t* li,
+                                               const std::int32_t* lj, const double* ldn,
+                                               const double* lds, const std::int32_t* on,
+                                               std::int64_t count, const ContactParams& params,
+                                               double dtau, const PairContactOut& out) {
   contacts_loop<true>(p, li, lj, ldn, lds, on, count, params, dtau, out);
 }
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) static void contacts_geometric(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-    const double* ldn, const double* lds, const std::int32_t* on, std::int64_t count,
-    const ContactParams& params, double dtau, const PairContactOut& out) {
+FLUIDBED_SIMD_CLONES void contacts_geometric(const PairKernelParticles& p, const std::int32_t* li,
+                                             const std::int32_t* lj, const double* ldn,
+                                             const double* lds, const std::int32_t* on,
+                                             std::int64_t count, const ContactParams& params,
+                                             double dtau, const PairContactOut& out) {
   contacts_loop<false>(p, li, lj, ldn, lds, on, count, params, dtau, out);
+}
+
+// Each instruction set's own build.
+FLUIDBED_SIMD_AVX512F void classify_avx512f(const PairKernelParticles& p, const std::int32_t* li,
+                                            const std::int32_t* lj, std::int64_t k0,
+                                            std::int64_t k1, std::uint8_t* code) {
+  classify_loop(p, li, lj, k0, k1, code);
+}
+FLUIDBED_SIMD_AVX2 void classify_avx2(const PairKernelParticles& p, const std::int32_t* li,
+                                      const std::int32_t* lj, std::int64_t k0, std::int64_t k1,
+                                      std::uint8_t* code) {
+  classify_loop(p, li, lj, k0, k1, code);
+}
+void classify_baseline(const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
+                       std::int64_t k0, std::int64_t k1, std::uint8_t* code) {
+  classify_loop(p, li, lj, k0, k1, code);
+}
+FLUIDBED_SIMD_AVX512F void contacts_avx512f(const PairKernelParticles& p, const std::int32_t* li,
+                                            const std::int32_t* lj, const double* ldn,
+                                            const double* lds, const std::int32_t* on,
+                                            std::int64_t count, const ContactParams& params,
+                                            bool incremental, double dtau,
+                                            const PairContactOut& out) {
+  contacts_either(p, li, lj, ldn, lds, on, count, params, incremental, dtau, out);
+}
+FLUIDBED_SIMD_AVX2 void contacts_avx2(const PairKernelParticles& p, const std::int32_t* li,
+                                      const std::int32_t* lj, const double* ldn, const double* lds,
+                                      const std::int32_t* on, std::int64_t count,
+                                      const ContactParams& params, bool incremental, double dtau,
+                                      const PairContactOut& out) {
+  contacts_either(p, li, lj, ldn, lds, on, count, params, incremental, dtau, out);
+}
+void contacts_baseline(const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
+                       const double* ldn, const double* lds, const std::int32_t* on,
+                       std::int64_t count, const ContactParams& params, bool incremental,
+                       double dtau, const PairContactOut& out) {
+  contacts_either(p, li, lj, ldn, lds, on, count, params, incremental, dtau, out);
+}
+
+}  // namespace
+
+FLUIDBED_SIMD_CLONES void classify_pairs(const PairKernelParticles& p, const std::int32_t* li,
+                                         const std::int32_t* lj, std::int64_t k0, std::int64_t k1,
+                                         std::uint8_t* code) {
+  classify_loop(p, li, lj, k0, k1, code);
 }
 
 void pair_contacts(const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
@@ -107,6 +169,33 @@ void pair_contacts(const PairKernelParticles& p, const std::int32_t* li, const s
     contacts_incremental(p, li, lj, dn, ds, on, count, params, dtau, out);
   } else {
     contacts_geometric(p, li, lj, dn, ds, on, count, params, dtau, out);
+  }
+}
+
+void classify_pairs_on(SimdBuild b, const PairKernelParticles& p, const std::int32_t* li,
+                       const std::int32_t* lj, std::int64_t k0, std::int64_t k1,
+                       std::uint8_t* code) {
+  switch (b) {
+    case SimdBuild::avx512f:
+      return classify_avx512f(p, li, lj, k0, k1, code);
+    case SimdBuild::avx2:
+      return classify_avx2(p, li, lj, k0, k1, code);
+    case SimdBuild::baseline:
+      return classify_baseline(p, li, lj, k0, k1, code);
+  }
+}
+
+void pair_contacts_on(SimdBuild b, const PairKernelParticles& p, const std::int32_t* li,
+                      const std::int32_t* lj, const double* dn, const double* ds,
+                      const std::int32_t* on, std::int64_t count, const ContactParams& params,
+                      bool incremental, double dtau, const PairContactOut& out) {
+  switch (b) {
+    case SimdBuild::avx512f:
+      return contacts_avx512f(p, li, lj, dn, ds, on, count, params, incremental, dtau, out);
+    case SimdBuild::avx2:
+      return contacts_avx2(p, li, lj, dn, ds, on, count, params, incremental, dtau, out);
+    case SimdBuild::baseline:
+      return contacts_baseline(p, li, lj, dn, ds, on, count, params, incremental, dtau, out);
   }
 }
 

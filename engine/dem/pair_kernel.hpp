@@ -1,11 +1,12 @@
 #pragma once
 // The arithmetic of the pair pass over flat arrays, branch-free so that the compiler handles
-// several pairs at a time (built for AVX-512 and AVX2 as well, chosen at run time): which pairs
-// touch, and the contact law (dem/contact_law.hpp, eqs 3-7 and 13-17) for those that do. The
-// operations and their order are those of the scalar law, so the results are the same bits on
-// every instruction set.
+// several pairs at a time (built for AVX-512 and AVX2 as well, chosen at run time: core/simd.hpp):
+// which pairs touch, and the contact law (dem/contact_law.hpp, eqs 3-7 and 13-17) for those that
+// do. The operations and their order are those of the scalar law, so the results are the same bits
+// on every instruction set.
 #include <cstdint>
 
+#include "core/simd.hpp"
 #include "dem/contact_law.hpp"
 
 namespace fluidbed {
@@ -34,5 +35,16 @@ void pair_contacts(const PairKernelParticles& p, const std::int32_t* li, const s
                    const double* dn, const double* ds, const std::int32_t* on, std::int64_t count,
                    const ContactParams& params, bool incremental, double dtau,
                    const PairContactOut& out);
+
+// The same two kernels as one build each (core/simd.hpp: AVX-512, AVX2 or plain x86-64), for
+// the tests that pin every build to the scalar law, not only the one this CPU takes. The CPU must
+// run the build (cpu_runs).
+void classify_pairs_on(SimdBuild b, const PairKernelParticles& p, const std::int32_t* li,
+                       const std::int32_t* lj, std::int64_t k0, std::int64_t k1,
+                       std::uint8_t* code);
+void pair_contacts_on(SimdBuild b, const PairKernelParticles& p, const std::int32_t* li,
+                      const std::int32_t* lj, const double* dn, const double* ds,
+                      const std::int32_t* on, std::int64_t count, const ContactParams& params,
+                      bool incremental, double dtau, const PairContactOut& out);
 
 }  // namespace fluidbed

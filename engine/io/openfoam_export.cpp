@@ -9,6 +9,7 @@
 #include <functional>
 #include <sstream>
 
+#include "cfd/gas_solver.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
@@ -99,8 +100,9 @@ Mesh mesh_for(const Settings& s) {
 }
 
 double inlet_velocity(const Settings& s) {
-  if (s.inlet.kind == InletKind::Jet)
-    return s.inlet.superficial_velocity * s.domain.width / s.inlet.jet_width;
+  if (s.inlet.kind == InletKind::Jet)  // one jet (write_openfoam_case refuses more)
+    return jet_slot_velocity(s.inlet.superficial_velocity, s.domain.width, s.inlet.jets,
+                             s.inlet.jet_width);
   if (s.inlet.kind == InletKind::Uniform) return s.inlet.superficial_velocity;
   return 0.0;
 }

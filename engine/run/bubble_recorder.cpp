@@ -83,28 +83,8 @@ nlohmann::json BubbleRecorder::bubbles_summary(double averaging_start) const {
   return j;
 }
 
+// Saved as their bytes (core/binary_io.hpp).
 static_assert(std::is_trivially_copyable_v<BubbleRow> && std::is_trivially_copyable_v<MixingSample>);
-
-void BubbleRecorder::save(std::ostream& out) const {
-  analysis_.save(out);
-  put(out, every_);
-  put(out, static_cast<std::int32_t>(bubbles_now_));
-  put(out, static_cast<std::int32_t>(regime_now_));
-  put_vec(out, rows_);
-  put_vec(out, mixing_);
-}
-
-void BubbleRecorder::restore(BinarySource& in) {
-  analysis_.load(in.stream(), in.origin());
-  if (in.get<std::int64_t>() != every_) in.fail("inconsistent (bubble analysis interval)");
-  bubbles_now_ = in.get<std::int32_t>();
-  const auto regime = in.get<std::int32_t>();
-  if (regime < 0 || regime > static_cast<std::int32_t>(Regime::spouting))
-    in.fail("inconsistent (bubble regime)");
-  regime_now_ = static_cast<Regime>(regime);
-  in.get_vec(rows_);
-  in.get_vec(mixing_);
-}
 
 nlohmann::json BubbleRecorder::mixing_summary() const {
   nlohmann::json j;

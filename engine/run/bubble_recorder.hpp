@@ -51,11 +51,19 @@ class BubbleRecorder {
   nlohmann::json bubbles_summary(double averaging_start) const;
   nlohmann::json mixing_summary() const;
 
-  // Its state as bytes and back, for a run's checkpoint (run/checkpoint.hpp): the tracker and
+  // Its state, for a run's checkpoint (run/checkpoint.hpp, core/binary_io.hpp): the tracker and
   // history of the analysis, the rows and mixing samples so far, the last frame's counts. restore
-  // expects a recorder built for the same scene.
-  void save(std::ostream& out) const;
-  void restore(BinarySource& in);
+  // expects a recorder built for the same scene and refuses one analysed at another interval.
+  template <class Archive>
+  void fields(Archive& a) {
+    a.tag("FLBBRC02", "bubble recorder");
+    const std::int64_t every = every_;
+    a(analysis_, every_, bubbles_now_, regime_now_, rows_, mixing_);
+    a.check(every_ == every, "bubble analysis interval");
+    a.check(regime_now_ <= Regime::spouting, "bubble regime");
+  }
+  void save(BinarySink& out) const { out(*this); }
+  void restore(BinarySource& in) { in(*this); }
 
  private:
   BubbleAnalysis analysis_;

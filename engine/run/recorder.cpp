@@ -254,8 +254,8 @@ void RunRecorder::save(BinarySink& out) const {
   out.tag(kRecorderTag);
   const_cast<RunRecorder*>(this)->fields(out);
   out(bounces_.has_value(), bubbles_.has_value());
-  if (bounces_) bounces_->save(out.stream());
-  if (bubbles_) bubbles_->save(out.stream());
+  if (bounces_) bounces_->save(out);
+  if (bubbles_) bubbles_->save(out);
 }
 
 void RunRecorder::restore(BinarySource& in) {
@@ -269,7 +269,7 @@ void RunRecorder::restore(BinarySource& in) {
   if (last_step != last_step_ || row_every != row_every_ || bed != bed_ || has_gas != has_gas_ ||
       bounces != bounces_.has_value() || bubbles != bubbles_.has_value())
     in.fail("inconsistent (recorded for another scene or end time)");
-  if (bounces_) bounces_->load(in);
+  if (bounces_) bounces_->restore(in);
   if (bubbles_) bubbles_->restore(in);
 }
 

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "cfd/gas_solver.hpp"
 #include "core/errors.hpp"
 #include "core/text_format.hpp"
 #include "dem/contact_law.hpp"
@@ -93,7 +94,8 @@ SceneCheck check_scene(const Settings& s) {
   const auto& g = s.gas;
   switch (in.kind) {
     case InletKind::Jet:
-      f.jet_velocity = in.superficial_velocity * s.domain.width / (in.jets * in.jet_width);
+      f.jet_velocity =
+          jet_slot_velocity(in.superficial_velocity, s.domain.width, in.jets, in.jet_width);
       break;
     case InletKind::Uniform:
       f.jet_velocity = in.superficial_velocity;

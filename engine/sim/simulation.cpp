@@ -64,11 +64,9 @@ Simulation::Simulation(const Settings& s)
 }
 
 void Simulation::set_superficial_velocity(double u) {
-  if (gas_) {
-    gas_->set_superficial_velocity(u);
-    note_inlet_speed();
-  }
-  settings_.inlet.superficial_velocity = u;
+  if (!gas_) return;
+  gas_->set_superficial_velocity(u);
+  note_inlet_speed();
 }
 
 void Simulation::step() {

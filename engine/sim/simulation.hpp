@@ -36,6 +36,8 @@ class Simulation {
 
   void step();
 
+  // The scene it was built from. Its inlet.superficial_velocity stays the scene's: the velocity
+  // the gas takes is the gas solver's (gas()->superficial_velocity(); set_superficial_velocity).
   const Settings& settings() const { return settings_; }
   const DemSolver& dem() const { return dem_; }
   DemSolver& dem() { return dem_; }
@@ -54,7 +56,8 @@ class Simulation {
   int steps_since_gas_step() const { return since_gas_step_; }
   // Pa, bottom to top on the symmetry line (0 without gas).
   double pressure_drop() const { return gas_ ? gas_->pressure_drop() : 0.0; }
-  // The superficial gas velocity from the next gas step on (m/s).
+  // The superficial gas velocity from the next gas step on (m/s). Its one owner is the gas
+  // solver (its state: saved, restored and hashed with it); without gas there is nothing to set.
   void set_superficial_velocity(double u);
 
   // Each particle's height when this simulation started (for colouring by initial height band).

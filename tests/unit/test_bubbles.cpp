@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "analysis/bubbles.hpp"
+#include "core/binary_io.hpp"
 #include "core/errors.hpp"
 #include "scene/lattice.hpp"
 #include "synthetic_bed.hpp"
@@ -638,9 +639,12 @@ TEST(BubbleAnalysis, CheckpointResumesWithTheSameResults) {
   BubbleAnalysis first({}, {});
   for (int k = 0; k < 3; ++k) first.analyse(0.01 * (k + 1), hex_bed(kWidth, kTop, holes(k)));
   std::stringstream state;
-  first.save(state);
+  fluidbed::BinarySink sink(state);
+  first.save(sink);
   BubbleAnalysis resumed({}, {});
-  resumed.load(state, "checkpoint");
+  const std::string origin = "checkpoint";
+  fluidbed::BinarySource source(state, origin);
+  resumed.restore(source);
   std::vector<BubbleRow> resumed_rows;
   for (int k = 3; k < 6; ++k) {
     resumed.analyse(0.01 * (k + 1), hex_bed(kWidth, kTop, holes(k)));
@@ -656,5 +660,47 @@ TEST(BubbleAnalysis, CheckpointResumesWithTheSameResults) {
   // A truncated state is an InputError naming its origin.
   std::stringstream cut(state.str().substr(0, 40));
   BubbleAnalysis broken({}, {});
-  EXPECT_THROW(broken.load(cut, "checkpoint"), fluidbed::InputError);
+  fluidbed::BinarySource cut_source(cut, origin);
+  EXPECT_THROW(broken.restore(cut_source), fluidbed::InputError);
+}
+
+TEST(BubbleAnalysis, CheckpointOfAnotherLayoutOrGridIsRefusedInOneLine) {
+  BubbleAnalysis a({}, {});
+  a.analyse(0.01, hex_bed(kWidth, kTop, {{0.05, 0.08, 0.010}}));
+  std::stringstream saved;
+  fluidbed::BinarySink sink(saved);
+  a.save(sink);
+  const std::string origin = "run/checkpoint.bin";
+  const auto refusal = [&](BubbleAnalysis& into, const std::string& bytes) {
+    std::stringstream in(bytes);
+    fluidbed::BinarySource source(in, origin);
+    try {
+      into.restore(source);
+    } catch (const fluidbed::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("restored");
+  };
+  // The same settings: restored.
+  BubbleAnalysis same({}, {});
+  EXPECT_EQ(refusal(same, saved.str()), "restored");
+  // An analysis on another fine grid: the tracker's cell labels do not fit it.
+  BubbleSettings coarse;
+  coarse.cell_size = 0.004;
+  BubbleAnalysis other(coarse, {});
+  EXPECT_EQ(refusal(other, saved.str()),
+            "run/checkpoint.bin: state file is inconsistent (array sizes)");
+  // Another version of the section (its tag's last two characters).
+  std::string older = saved.str();
+  older[6] = '0';
+  older[7] = '1';
+  BubbleAnalysis fresh({}, {});
+  EXPECT_EQ(refusal(fresh, older),
+            "run/checkpoint.bin: state file is written by another version of fluidbed (bubble "
+            "analysis 01, this one reads 02): run it again from its start");
+  // The layout before the tags (a four-byte magic number, then the tracker's).
+  std::string legacy = saved.str();
+  legacy.replace(0, 8, std::string("AHUB1BUB"));
+  BubbleAnalysis fresh2({}, {});
+  EXPECT_EQ(refusal(fresh2, legacy), "run/checkpoint.bin: state file is not a bubble analysis's");
 }
