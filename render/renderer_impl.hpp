@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
+#include "core/text_format.hpp"
 #include "render/font.hpp"
 #include "render/font_file.hpp"
 #include "render/gl_objects.hpp"
@@ -101,11 +102,7 @@ inline FontFile read_font(const std::string& path) {
   }
 }
 
-inline std::string format(const char* fmt, double a) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, fmt, a);
-  return buf;
-}
+inline std::string format(const char* fmt, double a) { return format_number(fmt, a); }
 
 // A unit quad's corners (triangle strip) and the unit arrow mesh (see shaders/arrows.vert).
 inline constexpr float kCorners[] = {-1, -1, 1, -1, -1, 1, 1, 1};

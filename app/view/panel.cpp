@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/text_format.hpp"
 #include "render/colour_map.hpp"
 #include "run/umf_estimate.hpp"
 #include "view/presets.hpp"
@@ -26,11 +27,7 @@ ImU32 to_imgui(const render::Rgb& c) {
                   static_cast<int>(c.b * 255.0f), 255);
 }
 
-std::string fmt(const char* f, double a) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, f, a);
-  return buf;
-}
+std::string fmt(const char* f, double a) { return format_number(f, a); }
 
 // A horizontal colour bar of the scale with its two ends labelled.
 void colour_bar(const render::ColourScale& scale) {
