@@ -13,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
+#include "core/text_format.hpp"
 #include "dem/contact_law.hpp"
 #include "dem/walls.hpp"
 #include "scene/scene_loader.hpp"
@@ -26,12 +27,9 @@ constexpr const char* kDeckName = "in.liggghts";
 constexpr const char* kDataName = "particles.data";
 constexpr const char* kDumpName = "final.dump";
 
-// Shortest text that reads back as the same double: the deck holds exactly the scene's numbers.
-std::string num(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general);
-  return std::string(buf, r.ptr);
-}
+// Numbers as the shortest text that reads back as the same double: the files hold exactly the
+// scene's numbers.
+std::string num(double v) { return shortest_number(v); }
 
 ContactParams contact_params(const Settings& s) { return dem_params_for(s).contact; }
 

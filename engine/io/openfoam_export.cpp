@@ -13,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/steps.hpp"
+#include "core/text_format.hpp"
 #include "dem/particles.hpp"
 #include "dem/walls.hpp"
 #include "run/packed_bed.hpp"
@@ -21,19 +22,12 @@
 namespace fluidbed {
 namespace {
 
-// Shortest text that reads back as the same double.
-std::string num(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general);
-  return std::string(buf, r.ptr);
-}
+// Numbers as the shortest text that reads back as the same double: the files hold exactly the
+// scene's numbers.
+std::string num(double v) { return shortest_number(v); }
 
 // Three significant digits, for the notes.
-std::string g3(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
+std::string g3(double v) { return format_number("%.3g", v); }
 
 const char* kBanner =
     "/*--------------------------------*- C++ -*----------------------------------*\\\n"

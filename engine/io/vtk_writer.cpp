@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/text_format.hpp"
 
 namespace fluidbed {
 namespace {
@@ -83,11 +84,7 @@ void time_field(std::ostream& o, double t) {
     << "    </FieldData>\n";
 }
 
-std::string number(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string number(double v) { return format_number("%.17g", v); }
 
 }  // namespace
 
