@@ -7,6 +7,8 @@ scripts/build.sh
 # The extended runs (a quarter of an hour or more each: ctest --test-dir build -L extended) are
 # left out here.
 ctest --test-dir build --output-on-failure -j "$(nproc)" -LE extended
+# The sanitizer build compiles only what its tests below run: no speed measurements (the
+# benchmark kernels and the renderer's timer) and no long or extended test binaries.
 BUILD_DIR=build-sanitize BUILD_TYPE=RelWithDebInfo scripts/build.sh -DFLUIDBED_SANITIZE=ON -DFLUIDBED_BENCHMARKS=OFF \
   -DFLUIDBED_LONG_TESTS=OFF
 # The sanitizer run starts from the Release run's packed beds: the cache key is the scene, not
