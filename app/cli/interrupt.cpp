@@ -53,4 +53,13 @@ void check_resume_out(const std::string& out, const std::string& resume, const s
     throw InputError(head + "--out " + out + " is not the " + what + "'s folder");
 }
 
+void check_resume_only(bool options_given, const std::string& out, const std::string& resume,
+                       const std::string& what, const std::string& takes) {
+  const std::string head = "cannot resume " + resume + ": ";
+  if (options_given)
+    throw InputError(head + "a resumed " + what + " takes " + takes +
+                     " (give only --resume DIR and, if wanted, --threads)");
+  check_resume_out(out, resume, head, what);
+}
+
 }  // namespace fluidbed::app

@@ -26,4 +26,10 @@ void say_interrupted(const std::string& resume_command);
 void check_resume_out(const std::string& out, const std::string& resume, const std::string& head,
                       const std::string& what);
 
+// `--resume DIR` of a WHAT that keeps how it was started in DIR: InputError ("cannot resume DIR: a
+// resumed WHAT takes TAKES (give only --resume DIR and, if wanted, --threads)") when other options
+// were given, then check_resume_out.
+void check_resume_only(bool options_given, const std::string& out, const std::string& resume,
+                       const std::string& what, const std::string& takes);
+
 }  // namespace fluidbed::app

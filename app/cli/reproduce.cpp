@@ -114,10 +114,8 @@ nlohmann::json reproduce_json(ReproduceArgs a) {
 // `reproduce --resume DIR`: the arguments from DIR/reproduce.json (only --threads beside it).
 ReproduceArgs resumed_reproduce_args(const ReproduceArgs& given) {
   const std::string head = "cannot resume " + given.resume + ": ";
-  if (given.options_given)
-    throw InputError(head + "a resumed report takes --quick, --seeds and --set from "
-                            "DIR/reproduce.json (give only --resume DIR and, if wanted, --threads)");
-  check_resume_out(given.out, given.resume, head, "report");
+  check_resume_only(given.options_given, given.out, given.resume, "report",
+                    "--quick, --seeds and --set from DIR/reproduce.json");
   if (!fs::is_directory(given.resume)) throw InputError(head + "not a folder");
   std::ifstream in(fs::path(given.resume) / "reproduce.json");
   if (!in) throw InputError(head + "no report to resume there (no reproduce.json)");

@@ -174,11 +174,10 @@ RunControl interruptible(bool resume, double checkpoint_every) {
 // changes no result) may be given beside it.
 RunArgs resumed_ensemble_args(const RunArgs& given) {
   const std::string head = "cannot resume " + given.resume + ": ";
-  if (!given.scene.empty() || !given.overrides.empty() || given.until >= 0.0 ||
-      !given.seeds.empty() || !given.outputs_given.empty() || given.checkpoint_every >= 0.0)
-    throw InputError(head + "a resumed ensemble takes its scene and options from "
-                            "DIR/ensemble.json (give only --resume DIR and, if wanted, --threads)");
-  check_resume_out(given.out, given.resume, head, "ensemble");
+  check_resume_only(!given.scene.empty() || !given.overrides.empty() || given.until >= 0.0 ||
+                        !given.seeds.empty() || !given.outputs_given.empty() ||
+                        given.checkpoint_every >= 0.0,
+                    given.out, given.resume, "ensemble", "its scene and options from DIR/ensemble.json");
   const nlohmann::json o = read_ensemble_identity(given.resume, "run --seeds", head);
   RunArgs r = given;
   r.out = given.resume;

@@ -46,10 +46,8 @@ nlohmann::json sweep_command_json(SweepArgs a) {
 // no result) may be given beside it.
 SweepArgs resumed_sweep_args(const SweepArgs& given) {
   const std::string head = "cannot resume " + given.resume + ": ";
-  if (given.options_given)
-    throw InputError(head + "a resumed sweep takes its scene and options from DIR/sweep.json "
-                            "(give only --resume DIR and, if wanted, --threads)");
-  check_resume_out(given.out, given.resume, head, "sweep");
+  check_resume_only(given.options_given, given.out, given.resume, "sweep",
+                    "its scene and options from DIR/sweep.json");
   // A sweep over packings keeps how it was started in DIR/ensemble.json, a single one in
   // DIR/sweep.json.
   const nlohmann::json j = holds_ensemble(given.resume)

@@ -3,6 +3,8 @@
 #include "analysis/bubble_types.hpp"
 
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -58,36 +60,17 @@ void validate(const BubbleSettings& s, const BedGeometry& g) {
       make_fine_grid(g.width, g.height, g.thickness, s.cell_size, g.particle_diameter), s.window);
 }
 
+// The names in the enums' order (bubble_types.hpp).
 const char* to_string(BubbleEvent e) {
-  switch (e) {
-    case BubbleEvent::none:
-      return "";
-    case BubbleEvent::formed:
-      return "formed";
-    case BubbleEvent::coalesced:
-      return "coalesced";
-    case BubbleEvent::split:
-      return "split";
-    case BubbleEvent::erupted:
-      return "erupted";
-    case BubbleEvent::vanished:
-      return "vanished";
-  }
-  return "";
+  static constexpr const char* kNames[] = {"", "formed", "coalesced", "split", "erupted", "vanished"};
+  const auto k = static_cast<std::size_t>(e);
+  return k < std::size(kNames) ? kNames[k] : "";
 }
 
 const char* to_string(Regime r) {
-  switch (r) {
-    case Regime::fixed:
-      return "fixed";
-    case Regime::bubbling:
-      return "bubbling";
-    case Regime::slugging:
-      return "slugging";
-    case Regime::spouting:
-      return "spouting";
-  }
-  return "";
+  static constexpr const char* kNames[] = {"fixed", "bubbling", "slugging", "spouting"};
+  const auto k = static_cast<std::size_t>(r);
+  return k < std::size(kNames) ? kNames[k] : "";
 }
 
 }  // namespace fluidbed

@@ -10,6 +10,7 @@
 // pair_contacts_on) compiles the same loop in the same file with FLUIDBED_SIMD_AVX512F or
 // FLUIDBED_SIMD_AVX2 (or neither: plain x86-64), and the test runs each build the CPU runs.
 #include <array>
+#include <cstddef>
 
 #define FLUIDBED_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #define FLUIDBED_SIMD_AVX512F __attribute__((target("avx512f")))
@@ -23,15 +24,8 @@ inline constexpr std::array<SimdBuild, 3> kSimdBuilds = {SimdBuild::avx512f, Sim
                                                          SimdBuild::baseline};
 
 inline const char* to_string(SimdBuild b) {
-  switch (b) {
-    case SimdBuild::avx512f:
-      return "avx512f";
-    case SimdBuild::avx2:
-      return "avx2";
-    case SimdBuild::baseline:
-      return "baseline";
-  }
-  return "";
+  static constexpr const char* kNames[] = {"avx512f", "avx2", "baseline"};  // the enum's order
+  return kNames[static_cast<std::size_t>(b)];
 }
 
 // Whether this CPU runs the build (the baseline: always).

@@ -33,18 +33,18 @@ std::uint64_t whole_number(const std::string& item, const std::string& text) {
   return static_cast<std::uint64_t>(v);
 }
 
-void flatten(const nlohmann::json& j, const std::string& prefix,
-             std::map<std::string, double>& out) {
+}  // namespace
+
+void flatten_numbers(const nlohmann::json& j, const std::string& prefix,
+                     std::map<std::string, double>& out) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
     if (it->is_object())
-      flatten(*it, key, out);
+      flatten_numbers(*it, key, out);
     else if (it->is_number() && std::isfinite(it->get<double>()))
       out[key] = it->get<double>();
   }
 }
-
-}  // namespace
 
 std::vector<std::uint64_t> parse_seeds(const std::string& text, std::uint64_t first) {
   std::vector<std::uint64_t> seeds;
@@ -113,7 +113,7 @@ nlohmann::json ensemble_statistics(const std::vector<nlohmann::json>& summaries)
   std::map<std::string, std::vector<double>> values;
   for (const auto& s : summaries) {
     std::map<std::string, double> flat;
-    flatten(s, "", flat);
+    flatten_numbers(s, "", flat);
     for (const auto& [k, v] : flat) values[k].push_back(v);
   }
   nlohmann::json out = nlohmann::json::object();

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -24,6 +25,11 @@
 #include "scene/settings.hpp"
 
 namespace fluidbed {
+
+// Every finite number of `j` into `out`, nested objects flattened with '.' below `prefix` ("" at
+// the top): the values the ensemble's statistics are taken of.
+void flatten_numbers(const nlohmann::json& j, const std::string& prefix,
+                     std::map<std::string, double>& out);
 
 // `--seeds TEXT` as the list of seeds (see above), `first` being the scene's seed s0. Throws
 // InputError (one line naming the problem) for 0, a repeated seed, a number that is not whole

@@ -44,18 +44,6 @@ nlohmann::json read_json(const std::filesystem::path& p) {
   return text.empty() ? nlohmann::json::object() : nlohmann::json::parse(text);
 }
 
-// Every numeric value of a summary, nested objects flattened with '.'.
-void flatten(const nlohmann::json& j, const std::string& prefix,
-             std::map<std::string, double>& out) {
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
-    if (it->is_object())
-      flatten(*it, key, out);
-    else if (it->is_number())
-      out[key] = it->get<double>();
-  }
-}
-
 }  // namespace
 
 TEST(Ensembles, BadSeedsAreOneLineAndStatus2) {
@@ -156,7 +144,7 @@ TEST(Ensembles, SummaryHoldsTheMeanAndSpreadOfTheSeeds) {
   std::map<std::string, std::vector<double>> values;
   for (int seed = 1; seed <= 3; ++seed) {
     std::map<std::string, double> flat;
-    flatten(read_json(dir / "seeds" / std::to_string(seed) / "summary.json"), "", flat);
+    flatten_numbers(read_json(dir / "seeds" / std::to_string(seed) / "summary.json"), "", flat);
     for (const auto& [k, v] : flat) values[k].push_back(v);
   }
   for (const char* key : {"dp_mean_pa", "bed_height_m", "solid_fraction", "bed_height_mean_m",
@@ -265,8 +253,8 @@ TEST(Ensembles, StoppedEnsembleResumesToTheUnstoppedOnesFiles) {
     EXPECT_TRUE(fs::exists(stop / "seeds" / seed / "trajectory.png")) << seed;
   }
   std::map<std::string, double> a, b;
-  flatten(read_json(dir / "ref" / "summary.json"), "", a);
-  flatten(read_json(stop / "summary.json"), "", b);
+  flatten_numbers(read_json(dir / "ref" / "summary.json"), "", a);
+  flatten_numbers(read_json(stop / "summary.json"), "", b);
   ASSERT_EQ(a.size(), b.size());
   int compared = 0;
   for (const auto& [key, value] : a) {

@@ -6,6 +6,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "../test_support.hpp"
 #include "core/errors.hpp"
@@ -15,6 +18,27 @@
 #include "sim/checks.hpp"
 
 using namespace fluidbed;
+
+namespace {
+
+// The paper's bed cut to 150 particles on the lattice start with a uniform inlet, and a sweep
+// of 6 ms runs (averaged over their second half) on two threads into a fresh folder NAME.
+Settings small_sweep_bed() {
+  return load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml",
+                    {"particles.placement=lattice", "particles.count=150",
+                     "particles.fill_height=0.08", "inlet.kind=uniform"});
+}
+SweepOptions short_sweep(std::vector<double> velocities, const std::string& name) {
+  SweepOptions o;
+  o.velocities = std::move(velocities);
+  o.run_time = 0.006;
+  o.averaging_start = 0.003;
+  o.threads = 2;
+  o.out_dir = fluidbed::testing::temp_dir(name).string();
+  return o;
+}
+
+}  // namespace
 
 TEST(UmfFit, FindsTheKneeOfAPiecewiseCurve) {
   // dp = 2000 U below 1.8 m/s, 3600 Pa above, with a +-20 Pa wobble: U_mf = 1.8 m/s.
@@ -37,15 +61,8 @@ TEST(UmfFit, FindsTheKneeOfAPiecewiseCurve) {
 }
 
 TEST(Sweep, BranchOrderAndStateHandOver) {
-  Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml",
-                          {"particles.placement=lattice", "particles.count=150",
-                           "particles.fill_height=0.08", "inlet.kind=uniform"});
-  SweepOptions o;
-  o.velocities = {1.5, 0.5, 1.0};  // any order in, sorted out
-  o.run_time = 0.006;
-  o.averaging_start = 0.003;
-  o.threads = 2;
-  o.out_dir = fluidbed::testing::temp_dir("sweep").string();
+  Settings s = small_sweep_bed();
+  SweepOptions o = short_sweep({1.5, 0.5, 1.0}, "sweep");  // any order in, sorted out
   const SweepResult r = run_sweep(s, o);
   ASSERT_EQ(r.up.size(), 3u);
   ASSERT_EQ(r.down.size(), 2u);
@@ -114,15 +131,8 @@ TEST(Sweep, VelocitiesThatWouldShareARunFolderAreRefused) {
 TEST(Sweep, DecreasingBranchStartsFromTheHighestFinishedRun) {
   // At 1000 and 1200 m/s the first gas step's CFL number is far above 1: both runs fail. The
   // decreasing branch then starts from 1.5 m/s, the highest run that finished.
-  Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml",
-                          {"particles.placement=lattice", "particles.count=150",
-                           "particles.fill_height=0.08", "inlet.kind=uniform"});
-  SweepOptions o;
-  o.velocities = {0.5, 1.0, 1.5, 1000.0, 1200.0};
-  o.run_time = 0.006;
-  o.averaging_start = 0.003;
-  o.threads = 2;
-  o.out_dir = fluidbed::testing::temp_dir("sweep-fail").string();
+  Settings s = small_sweep_bed();
+  SweepOptions o = short_sweep({0.5, 1.0, 1.5, 1000.0, 1200.0}, "sweep-fail");
   const SweepResult r = run_sweep(s, o);
   ASSERT_EQ(r.up.size(), 5u);
   ASSERT_EQ(r.down.size(), 4u);
