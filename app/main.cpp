@@ -1,4 +1,4 @@
-// fluidbed: a gas-fluidized bed of discrete particles (Xu & Yu 1997). See README.md.
+// fluidbed: a gas-fluidized bed of discrete particles (Xu & Yu 1997). See README.md and docs/
 #include <CLI/CLI.hpp>
 #include <cctype>
 #include <cstdio>
@@ -12,6 +12,7 @@
 #include "cli/study.hpp"
 #include "cli/view.hpp"
 #include "core/errors.hpp"
+#include "render/asset_dir.hpp"
 #include "render/colour_by.hpp"
 #include "sim/checks.hpp"
 
@@ -28,7 +29,7 @@ void add_scene_options(CLI::App* cmd, fluidbed::app::RunArgs& a, bool scene_requ
       ->check(CLI::NonNegativeNumber);
 }
 
-// Frames, video, montage and VTK files of `run` (see README.md, "Pictures and files").
+// Frames, video, montage and VTK files of `run` (see docs/pictures.md).
 void add_output_options(CLI::App* cmd, fluidbed::app::OutputArgs& o) {
   cmd->add_flag("--frames", o.frames, "write DIR/frames/*.png at every frame interval");
   cmd->add_flag("--video", o.video, "write DIR/video.mp4 (ffmpeg, H.264)");
@@ -84,6 +85,11 @@ std::vector<fluidbed::app::CommandDoc> command_docs(const CLI::App& app) {
 int main(int argc, char** argv) {
   CLI::App app{"fluidbed: a gas-fluidized bed of discrete particles and locally averaged gas"};
   app.require_subcommand(1);
+  const std::string docs = fluidbed::render::doc_dir();
+  app.footer("Documentation: " +
+             (docs.empty() ? std::string("README.md and docs/ of the source tree")
+                           : docs + "/README.md and " + docs + "/docs/ (one page per task)") +
+             "; `fluidbed VERB --help` for a verb's options, `man fluidbed` for every key.");
   app.set_version_flag("--version", fluidbed::app::version_line(),
                        "print the version and the git commit it was built from");
   fluidbed::app::RunArgs run_args, bench_args;
@@ -158,7 +164,7 @@ int main(int argc, char** argv) {
                         "finish the report in folder DIR (interrupted or killed): finished runs, "
                         "sweep runs and studies are kept");
 
-  // The viewer: a window with a control panel (README.md, "Viewer"); headless frames without one.
+  // The viewer: a window with a control panel (docs/teaching.md); headless frames without one.
   auto* view = app.add_subcommand("view", "watch a scene live with a control panel (default scene: teaching)");
   add_scene_options(view, view_args.run_like, false);
   add_output_options(view, view_args.output);
@@ -166,7 +172,7 @@ int main(int argc, char** argv) {
   view->get_option("--frame-size")
       ->description(std::string("window size WxH in pixels (") +
                     fluidbed::app::ViewArgs::kWindowSize + "; headless: the frames' size)");
-  view->add_option("--script", view_args.script, "drive the viewer from a file (README.md, \"Viewer\")");
+  view->add_option("--script", view_args.script, "drive the viewer from a file (docs/teaching.md)");
   view->add_option("--lesson", view_args.lesson,
                    "run a lesson of assets/lessons (a script with captions); headless: DIR/video.mp4");
   view->add_flag("--list-lessons", view_args.list_lessons, "list the lessons and exit");

@@ -30,4 +30,26 @@ std::string asset_dir() {
   return find_asset_dir(std::getenv("FLUIDBED_ASSETS"), ec ? std::filesystem::path() : program);
 }
 
+std::string find_doc_dir(const std::filesystem::path& program) {
+  std::error_code ec;
+  if (!program.empty()) {
+    const std::filesystem::path installed = program.parent_path() / FLUIDBED_INSTALLED_DOC_DIR;
+    if (std::filesystem::is_regular_file(installed / "README.md", ec)) {
+      const std::filesystem::path clean = std::filesystem::weakly_canonical(installed, ec);
+      return (ec ? installed : clean).string();
+    }
+  }
+  const std::filesystem::path source = FLUIDBED_SOURCE_DOC_DIR;
+  if (std::filesystem::is_regular_file(source / "README.md", ec) &&
+      std::filesystem::is_directory(source / "docs", ec))
+    return source.string();
+  return {};
+}
+
+std::string doc_dir() {
+  std::error_code ec;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return find_doc_dir(ec ? std::filesystem::path() : program);
+}
+
 }  // namespace fluidbed::render

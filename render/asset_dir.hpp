@@ -19,4 +19,10 @@ std::string find_asset_dir(const char* env, const std::filesystem::path& program
 // The source tree's assets folder this program was built from (the last place looked).
 std::string source_asset_dir();
 
+// Where the documentation is (README.md and docs/): the installed copy's share/doc/fluidbed,
+// found from `program` (PREFIX/bin/fluidbed -> PREFIX/share/doc/fluidbed) when it holds
+// README.md; else the source tree this program was built from when it still does; else empty.
+std::string find_doc_dir(const std::filesystem::path& program);
+std::string doc_dir();  // find_doc_dir with the running program's path
+
 }  // namespace fluidbed::render

@@ -1,5 +1,5 @@
 // fluidbed bench: the speed of a scene (default: packing) and where a step's time goes, in
-// bench.json (see README.md, "Speed"); `--peer liggghts` is cli/bench_peer.cpp.
+// bench.json (see docs/speed.md); `--peer liggghts` is cli/bench_peer.cpp.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>

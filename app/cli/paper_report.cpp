@@ -261,7 +261,7 @@ std::string paper_report(const ReproduceArgs& a, const PaperRuns& r, double tota
      << r.uniform_time << " s; ideal: `assets/scenes/ideal.toml`, " << r.ideal_time
      << " s, and the same with `contact.displacement = geometric`.\n";
   md << "- bubbles: the scene's `[bubbles]` settings (threshold, interval, minimum diameter); the "
-     << "regime rule and the eruption count are in the README (Bubbles and slugs).\n";
+     << "regime rule and the eruption count are in docs/bubbles.md.\n";
   md << "- sweep: " << sr.up.size() << " velocities, " << r.sweep_run_time
      << " s each, averaging from " << r.sweep_averaging_start
      << " s; U_mf: least-squares line through the defluidized points of "

@@ -1,6 +1,5 @@
 // fluidbed run: one scene to its end, summary.json and timeseries.csv; with options its frames,
-// video, montage, VTK files and the paper's plots (README.md, "Pictures, video and ParaView
-// files").
+// video, montage, VTK files and the paper's plots (docs/pictures.md).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 // fluidbed study: speed against accuracy, stability limits and model choices (see
-// app/studies/common.hpp and README.md, "Studies").
+// app/studies/common.hpp and docs/studies.md).
 #include "cli/study.hpp"
 
 #include <cstdio>

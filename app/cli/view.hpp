@@ -1,6 +1,6 @@
 #pragma once
 // `fluidbed view [SCENE] [--set K=V]... [--script FILE | --lesson NAME] [--out DIR]`: the bed live
-// in a window with a control panel (README.md, "Viewer"). Without a display it says so in one
+// in a window with a control panel (docs/teaching.md). Without a display it says so in one
 // line and runs the scene headlessly with the same settings into frames (and, for a lesson, a
 // video with its captions) instead.
 #include <string>

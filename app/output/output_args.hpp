@@ -6,7 +6,7 @@
 namespace fluidbed::app {
 
 // Pictures and files of a run at exact simulated times (`run --frames --video --vtk --montage`,
-// see output/frames.hpp and README.md).
+// see output/frames.hpp and docs/pictures.md).
 struct OutputArgs {
   bool frames = false, video = false, vtk = false;
   std::string montage;                  // "0.2,0.4,0.6" (s); empty: none

@@ -288,7 +288,7 @@ Report model_form_study(const Options& o);
 Report failures_study(const Options& o);
 Report energy_study(const Options& o);
 Report teaching_study(const Options& o);
-// The bounds the teaching scene was chosen by (README "Speed"), as teaching_study's columns.
+// The bounds the teaching scene was chosen by (docs/studies.md), as teaching_study's columns.
 const std::vector<Bound>& teaching_bounds();
 
 }  // namespace fluidbed::app::study

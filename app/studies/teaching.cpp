@@ -1,5 +1,5 @@
 // Study 9: the teaching scene's bounds. teaching.toml (what `fluidbed view` opens) was chosen as
-// the cheapest settings whose bed stays within bounds of the paper-fidelity bed (README "Speed"):
+// the cheapest settings whose bed stays within bounds of the paper-fidelity bed (docs/studies.md):
 // mean dp within 5 %, the dominant dp frequency within 10 %, mean bed height within 5 %, max
 // overlap after start-up below 4 %, mean bubble diameter and eruption frequency within 15 %. This
 // study runs the paper-fidelity bed and the candidates of that choice from one packed bed, each
@@ -27,8 +27,9 @@ struct Candidate {
   double refresh;    // gas.preconditioner_refresh
 };
 
-// The rows of the README's teaching table, in its order; the tiny size keeps the chosen one and
-// the one whose frequency is off, so that its table shows both verdicts when the tiny bed bubbles.
+// The rows of the teaching table (docs/studies.md), in its order; the tiny size keeps the chosen
+// one and the one whose frequency is off, so that its table shows both verdicts when the tiny bed
+// bubbles.
 std::vector<Candidate> candidates(Size size) {
   if (size == Size::Tiny) return {{10000.0, 2, 1e-3, 0.1}, {5000.0, 2, 1e-3, 0.1}};
   return {{20000.0, 3, 1e-6, 0.002}, {20000.0, 3, 1e-3, 0.1},  {10000.0, 2, 1e-6, 0.002},
@@ -268,7 +269,7 @@ std::string findings(const Teaching& m) {
      << "paper's packing of this seed), with the teaching scene's jet and top wall, the bubble "
      << "analysis on and averages from " << m.averaging << " s"
      << (m.size == Size::Tiny ? " (tiny size: 300 particles in a bed 0.06 m wide, 2 candidates)"
-                              : " (the paper's bed, as the README's teaching table)")
+                              : " (the paper's bed, as docs/studies.md's teaching table)")
      << ". The candidates' step is the pair contact duration / 3.15 (4 digits) and their "
         "damping the paper's times sqrt(kappa / 50,000) (the paper's restitution). Bounds: mean "
         "dp within 5 %, dominant dp frequency (Welch, refined) within 10 %, mean bed height "

@@ -19,7 +19,7 @@ namespace fluidbed::app {
 namespace {
 
 // The overlap above which the panel warns: about twice the largest the teaching bed reaches in
-// its own run after start-up (2.8 %, README "Speed"); the paper's stiff bed stays near 1 %.
+// its own run after start-up (2.8 %, docs/studies.md); the paper's stiff bed stays near 1 %.
 constexpr double kOverlapWarning = 0.05;
 
 ImU32 to_imgui(const render::Rgb& c) {

@@ -2,7 +2,7 @@
 // The stages of Fig. 6 as buttons and script commands: gas velocities as multiples of the
 // scene's own minimum fluidization velocity (measured, run/umf_estimate.hpp), so a bed of
 // lighter particles gets lower velocities. The multiples were chosen from the regime the bubble
-// analysis reports for the teaching bed at each (README, "Viewer").
+// analysis reports for the teaching bed at each (docs/teaching.md).
 #include <cstddef>
 #include <string>
 

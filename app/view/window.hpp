@@ -192,7 +192,7 @@ class Viewer : private ScriptTarget {
   int exit_status_ = 0;
 
   // Tests drive the window with a pointer: $FLUIDBED_VIEW_WIDGETS names a file where the window
-  // writes where its widgets are (README, "Viewer").
+  // writes where its widgets are (docs/teaching.md).
   std::string widgets_file_;
   std::vector<std::string> widget_lines_;
   std::string widgets_written_;

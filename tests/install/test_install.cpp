@@ -56,11 +56,21 @@ TEST(Install, InstalledCopyRunsASceneFromItsShareFolderAndDrawsAFrame) {
   EXPECT_TRUE(fs::exists(share / "fonts" / "DejaVuSans.ttf"));
   for (const std::string& scene : shipped_scenes())
     EXPECT_TRUE(fs::exists(share / "scenes" / scene)) << scene;
+  const fs::path doc = prefix / "share" / "doc" / "fluidbed";
+  EXPECT_TRUE(fs::exists(doc / "README.md"));
+  for (const char* page : {"teaching.md", "running.md", "install.md", "layout.md"})
+    EXPECT_TRUE(fs::exists(doc / "docs" / page)) << page;
 
   // From a folder that has nothing to do with the build or the sources.
   const fs::path work = root / "somewhere" / "else";
   fs::create_directories(work);
   const std::string program = (prefix / "bin" / "fluidbed").string();
+  // Its help names the installed documentation.
+  const Shell help = shell(program + " --help", work, "help");
+  ASSERT_EQ(help.status, 0) << help.out;
+  EXPECT_NE(help.out.find("Documentation: " + fs::weakly_canonical(doc).string() + "/README.md"),
+            std::string::npos)
+      << help.out;
   const std::string run = program + " run '" + (share / "scenes" / "drop.toml").string() +
                           "' --until 0.02 --frames --frame-interval 0.02 --out out";
   Shell r = shell(run, work, "run");
@@ -132,6 +142,8 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndHoldsProgramScenesAndManPag
   EXPECT_TRUE(files.count("./usr/bin/fluidbed")) << list.out;
   EXPECT_TRUE(files.count("./usr/share/man/man1/fluidbed.1.gz")) << list.out;
   EXPECT_TRUE(files.count("./usr/share/fluidbed/fonts/DejaVuSans.ttf")) << list.out;
+  EXPECT_TRUE(files.count("./usr/share/doc/fluidbed/README.md")) << list.out;
+  EXPECT_TRUE(files.count("./usr/share/doc/fluidbed/docs/teaching.md")) << list.out;
   for (const std::string& scene : shipped_scenes())
     EXPECT_TRUE(files.count("./usr/share/fluidbed/scenes/" + scene)) << scene << "\n" << list.out;
   fs::remove_all(dir);

@@ -368,7 +368,7 @@ TEST(Study, TeachingTiny) {
       }
       EXPECT_NEAR(c.num(r, diff), expected, 2e-3 * std::max(1.0, a / b)) << diff << ", row " << r;
     }
-  // The verdict against the bounds (README "Speed"): each failing bound named, a missing number
+  // The verdict against the bounds (docs/studies.md): each failing bound named, a missing number
   // ("no bubbles") never a pass.
   struct B {
     const char* column;
@@ -402,7 +402,7 @@ TEST(Study, TeachingTiny) {
     }
   }
   // The candidates' step and damping follow teaching.toml's rule: dt = the pair contact duration
-  // / 3.15 (4 digits: the README's table), damping 0.15 sqrt(kappa / 50,000); the chosen
+  // / 3.15 (4 digits: docs/studies.md's table), damping 0.15 sqrt(kappa / 50,000); the chosen
   // candidate is teaching.toml's settings.
   const fluidbed::Settings scene = fluidbed::load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/teaching.toml");
   const std::map<double, double> table_dt = {{20000.0, 4.743e-5}, {10000.0, 6.708e-5}, {5000.0, 9.487e-5}};
