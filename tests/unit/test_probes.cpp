@@ -1,6 +1,8 @@
-// Pressure probes and the bed top (analysis/pressure_probe.hpp, analysis/packing_metrics.hpp):
-// the probe against a pressure field made by hand, with its clamping at the walls and its outlet
-// reference; the highest centre of spheres placed by hand.
+// Pressure probes and the bed top (diagnostics.probes; analysis/pressure_probe.hpp,
+// analysis/packing_metrics.hpp): the probe against a pressure field made by hand, with its
+// clamping at the walls and its outlet reference; the key read from a scene and from --set,
+// written back, and refused in one line where it cannot be measured; the highest centre of
+// spheres placed by hand.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +11,8 @@
 #include "../test_support.hpp"
 #include "analysis/packing_metrics.hpp"
 #include "analysis/pressure_probe.hpp"
+#include "core/errors.hpp"
+#include "scene/scene_loader.hpp"
 
 using namespace fluidbed;
 using namespace fluidbed::testing;
@@ -99,4 +103,60 @@ TEST(BedTop, TheHighestSphereCentre) {
   EXPECT_LT(measure_packing(p, 0.15, 0.004).bed_height, bed_top(p));
   EXPECT_EQ(bed_top(make_particles({{0.05, 0.3, 0, 0, 0}})), 0.3);
   EXPECT_EQ(bed_top(Particles{}), 0.0);
+}
+
+TEST(Probes, ReadFromTheSceneAndFromSetAndWrittenBack) {
+  const Settings s =
+      parse_scene("[gas]\n[diagnostics]\nprobes = [[0.045, 0.045], [0.075, 0.1]]\n", "t.toml");
+  ASSERT_EQ(s.diagnostics.probes.size(), 2u);
+  EXPECT_EQ(s.diagnostics.probes[1], (ProbePoint{0.075, 0.1}));
+  const Settings set = parse_scene("[gas]\n", "t.toml", {"diagnostics.probes=[[0.045, 0.045]]"});
+  ASSERT_EQ(set.diagnostics.probes.size(), 1u);
+  EXPECT_EQ(set.diagnostics.probes[0], (ProbePoint{0.045, 0.045}));
+  // Integers read as numbers; the resolved scene reads back as itself.
+  EXPECT_EQ(parse_scene("[gas]\n", "t.toml", {"diagnostics.probes=[[0, 0]]"}).diagnostics.probes[0],
+            (ProbePoint{0.0, 0.0}));
+  const std::string text = to_toml(s);
+  EXPECT_NE(text.find("probes = [["), std::string::npos) << text;
+  EXPECT_EQ(parse_scene(text, "resolved.toml").diagnostics.probes, s.diagnostics.probes);
+  // No probes: the resolved scene has no line for them (its text, which the packed-bed cache
+  // is keyed on, is what it was before the key existed).
+  EXPECT_EQ(to_toml(Settings{}).find("probes"), std::string::npos);
+}
+
+TEST(Probes, RefusedInOneLineNamingTheProbe) {
+  const auto error_of = [](const std::string& scene, const std::string& set) {
+    try {
+      parse_scene(scene, "t.toml", {set});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // The paper's box is 0.15 x 0.9 m.
+  std::string e = error_of("[gas]\n", "diagnostics.probes=[[0.05, 0.1], [0.2, 0.05]]");
+  EXPECT_NE(e.find("diagnostics.probes"), std::string::npos) << e;
+  EXPECT_NE(e.find("diagnostics.probes has probe 2 at (0.2, 0.05) m outside the gas domain"),
+            std::string::npos)
+      << e;
+  e = error_of("[gas]\n", "diagnostics.probes=[[0.05, -0.01]]");
+  EXPECT_NE(e.find("probe 1 at (0.05, -0.01) m outside"), std::string::npos) << e;
+  e = error_of("", "diagnostics.probes=[[0.05, 0.1]]");  // no [gas]
+  EXPECT_NE(e.find("probe 1 at (0.05, 0.1) m but the scene has no gas"), std::string::npos) << e;
+  for (const char* bad : {"diagnostics.probes=[[0.05]]", "diagnostics.probes=[0.05, 0.1]",
+                          "diagnostics.probes=[[0.05, \"a\"]]", "diagnostics.probes=0.05"}) {
+    e = error_of("[gas]\n", bad);
+    EXPECT_NE(e.find("diagnostics.probes"), std::string::npos) << bad << ": " << e;
+  }
+  EXPECT_EQ(error_of("[gas]\n", "diagnostics.probes=[[0.0, 0.9], [0.15, 0.0]]"), "");  // walls
+
+  // The program: exit 2, one line that names the probe.
+  const CommandResult r = run_fluidbed(
+      "run " + std::string(FLUIDBED_ASSET_DIR) +
+          "/scenes/xu_yu_1997.toml --set 'diagnostics.probes=[[0.075, 0.1], [0.16, 0.1]]'",
+      "probe-outside");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("probe 2 at (0.16, 0.1) m outside the gas domain"), std::string::npos)
+      << r.err;
 }
