@@ -79,6 +79,41 @@ inline void write_file(const std::filesystem::path& p, const std::string& text) 
   std::ofstream(p) << text;
 }
 
+// 300 spheres of the paper on a lattice 6 cm tall in a box 0.3 m high, landing on the jet (gas
+// stepped every 20 particle steps): by 0.12 s (8000 steps, 0.15 s of wall time) dp carries 40 %
+// of the bed's weight and 70 contacts hold history. Averages from 0.04 s.
+inline std::string small_jet_bed_toml(const std::string& name) {
+  return "[scene]\nname = \"" + name + R"("
+kind = "bed"
+
+[particles]
+count = 300
+placement = "lattice"
+fill_height = 0.06
+seed = 7
+
+[domain]
+height = 0.3
+
+[gas]
+cells_y = 15
+
+[inlet]
+kind = "jet"
+superficial_velocity = 2.5
+
+[coupling]
+particle_steps_per_gas_step = 20
+
+[time]
+end = 0.12
+
+[diagnostics]
+output_interval = 1e-3
+averaging_start = 0.04
+)";
+}
+
 // Runs the fluidbed binary with arguments; returns the exit status and what it printed on stderr.
 struct CommandResult {
   int status;

@@ -369,24 +369,45 @@ void plot_dp_ensemble(const std::string& path, const std::vector<SeedTrace>& tra
 
 namespace {
 
-// Welch's power spectrum of dp (log scale), its dominant frequency marked.
-chart::Image spectrum_chart(const PowerSpectrum& sp) {
-  chart::Chart c;
-  c.title = "Power spectrum of the pressure drop after start-up (Welch)";
-  c.x.label = "frequency (Hz)";
-  c.y.label = "power spectral density (Pa^2/Hz)";
-  c.y.log = true;
+// A spectrum up to 20 Hz as a line (the mean, 0 Hz, is removed).
+chart::Series spectrum_series(const PowerSpectrum& sp, std::string label) {
   chart::Series s;
-  for (std::size_t k = 1; k < sp.frequency.size(); ++k) {  // the mean (0 Hz) is removed
+  s.label = std::move(label);
+  for (std::size_t k = 1; k < sp.frequency.size(); ++k) {
     if (sp.frequency[k] > 20.0) break;
     s.x.push_back(sp.frequency[k]);
     s.y.push_back(sp.psd[k]);
   }
-  c.series.push_back(std::move(s));
-  c.legend = false;
+  return s;
+}
+
+// Welch's power spectrum of dp (log scale), its dominant frequency marked, and each probe's
+// beside it (their colours after the marker's).
+chart::Image spectrum_chart(const PowerSpectrum& sp, const std::vector<ProbePoint>& probes,
+                            const std::vector<PowerSpectrum>& probe_spectra) {
+  chart::Chart c;
+  c.title = probes.empty()
+                ? "Power spectrum of the pressure drop after start-up (Welch)"
+                : "Power spectra of the pressure drop and the probes after start-up (Welch)";
+  c.x.label = "frequency (Hz)";
+  c.y.label = "power spectral density (Pa^2/Hz)";
+  c.y.log = true;
+  c.series.push_back(spectrum_series(sp, "pressure drop"));
+  c.series.back().colour = chart::palette(0);
+  for (std::size_t k = 0; k < probe_spectra.size() && k < probes.size(); ++k) {
+    if (!probe_spectra[k].ok) continue;
+    char label[96];
+    std::snprintf(label, sizeof label, "probe %zu at (%g, %g) m", k + 1, probes[k].x, probes[k].y);
+    chart::Series s = spectrum_series(probe_spectra[k], label);
+    s.colour = chart::palette(k + 2);
+    s.width = 1.5;
+    c.series.push_back(std::move(s));
+  }
+  c.legend = c.series.size() > 1;
   if (sp.dominant_frequency_refined > 0.0) {
     char label[64];
-    std::snprintf(label, sizeof label, "dominant %.2f Hz", sp.dominant_frequency_refined);
+    std::snprintf(label, sizeof label, "%sdominant %.2f Hz", probes.empty() ? "" : "dp ",
+                  sp.dominant_frequency_refined);
     c.vlines.push_back({sp.dominant_frequency_refined, label, chart::palette(1), true, 1.5});
   }
   return chart::render(c, 1200, 600, font());
@@ -489,7 +510,7 @@ std::vector<std::string> plot_run(const std::string& dir, const RunResult& r,
   }
   if (r.dp_spectrum.ok) {
     const auto p = (fs::path(dir) / "dp_spectrum.png").string();
-    spectrum_chart(r.dp_spectrum).write_png(p);
+    spectrum_chart(r.dp_spectrum, r.probes, r.probe_spectra).write_png(p);
     written.push_back(p);
   }
   if (r.bubbles) {

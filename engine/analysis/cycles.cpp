@@ -7,7 +7,8 @@
 
 namespace fluidbed {
 
-CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double>& signal) {
+CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double>& signal,
+                          CycleAmplitude against) {
   CycleStats s;
   const std::size_t n = std::min(t.size(), signal.size());
   if (n < 16) return s;
@@ -56,7 +57,11 @@ CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double
   s.dominant_period = 1.0 / best_f;
   s.dominant_power_share = total > 0.0 ? best_p / total : 0.0;
   s.amplitude = 2.0 * std::sqrt(best_p) / nn;
-  s.amplitude_share = mean != 0.0 ? s.amplitude / std::fabs(mean) : INFINITY;
+  double variance = 0.0;
+  for (std::size_t k = 0; k < n; ++k) variance += (signal[k] - mean) * (signal[k] - mean);
+  const double base = against == CycleAmplitude::mean ? std::fabs(mean) : std::sqrt(variance / nn);
+  const double needed = against == CycleAmplitude::mean ? kAmplitudeShare : kAmplitudeStdShare;
+  s.amplitude_share = base != 0.0 ? s.amplitude / base : INFINITY;
   // The spectrum around the peak: the octave either side without the peak's own neighbourhood
   // (a fifth of its frequency, several resolution widths for any peak of kMinCycles or more).
   std::vector<double> around;
@@ -77,9 +82,12 @@ CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double
   } else if (s.peak_prominence < kProminence) {
     std::snprintf(why, sizeof why, "no regular cycle: the highest peak (%.3g s) stands %.1f times above the spectrum around it (%.0f needed)",
                   s.dominant_period, s.peak_prominence, kProminence);
-  } else if (s.amplitude_share < kAmplitudeShare) {
-    std::snprintf(why, sizeof why, "no regular cycle: the oscillation at %.3g s is %.1f %% of the mean (%.0f %% needed)",
-                  s.dominant_period, 100.0 * s.amplitude_share, 100.0 * kAmplitudeShare);
+  } else if (s.amplitude_share < needed) {
+    std::snprintf(why, sizeof why,
+                  "no regular cycle: the oscillation at %.3g s is %.1f %% of the %s (%.0f %% "
+                  "needed)",
+                  s.dominant_period, 100.0 * s.amplitude_share,
+                  against == CycleAmplitude::mean ? "mean" : "standard deviation", 100.0 * needed);
   } else {
     std::snprintf(why, sizeof why, "regular cycle");
     s.regular = true;

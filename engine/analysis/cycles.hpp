@@ -16,7 +16,14 @@
 //                         stands a median 6-9 times above its surroundings, at most 29 times;
 //                     (b) the oscillation's amplitude (of the sinusoid at the peak) is at least
 //                         kAmplitudeShare of the signal's mean: a cycle that moves the pressure
-//                         drop by a tenth of itself, as the bubble cycle of Fig. 17 does;
+//                         drop by a tenth of itself, as the bubble cycle of Fig. 17 does. A
+//                         signal whose mean says nothing of its swings (a probe's pressure
+//                         against the outlet, whose mean is the weight of the bed above it) is
+//                         judged against its standard deviation instead: at least
+//                         kAmplitudeStdShare of it, so that the sinusoid carries at least an
+//                         eighth of the signal's variance (A^2 / 2 of sigma^2; a pure sine has
+//                         A = sqrt 2 sigma, the highest peak of n samples of white noise about
+//                         2 sigma sqrt(ln(600) / n), 0.07 sigma at 5,000);
 //                     (c) the record holds at least kMinCycles of it (a slower "period" is drift).
 #include <string>
 #include <vector>
@@ -25,6 +32,7 @@ namespace fluidbed {
 
 inline constexpr double kProminence = 40.0;
 inline constexpr double kAmplitudeShare = 0.1;
+inline constexpr double kAmplitudeStdShare = 0.5;
 inline constexpr double kMinCycles = 4.0;
 
 struct CycleStats {
@@ -34,7 +42,7 @@ struct CycleStats {
   double dominant_period = 0.0;   // s, the highest peak's (whether or not it is regular)
   double peak_prominence = 0.0;   // the peak's power over the median around it
   double amplitude = 0.0;         // the sinusoid's amplitude at the peak, in the signal's unit
-  double amplitude_share = 0.0;   // amplitude / |mean|
+  double amplitude_share = 0.0;   // amplitude / |mean| (or / std: CycleAmplitude::std)
   double dominant_power_share = 0.0;  // the peak's share of the power in the band
   int cycles = 0;
   double cycle_mean = 0.0;        // s
@@ -42,7 +50,12 @@ struct CycleStats {
   double cycle_cv = 0.0;          // std / mean: 0 for a perfectly regular cycle
 };
 
+// What criterion (b) measures the amplitude against: the signal's mean (dp) or its standard
+// deviation (a probe's pressure).
+enum class CycleAmplitude { mean, std };
+
 // t must be increasing with a near-constant spacing.
-CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double>& signal);
+CycleStats analyse_cycles(const std::vector<double>& t, const std::vector<double>& signal,
+                          CycleAmplitude against = CycleAmplitude::mean);
 
 }  // namespace fluidbed

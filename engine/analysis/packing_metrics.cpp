@@ -40,4 +40,9 @@ PackingMetrics measure_packing(const Particles& p, double width, double thicknes
   return m;
 }
 
+double bed_top(const Particles& p) {
+  if (p.size() == 0) return 0.0;
+  return *std::max_element(p.y.begin(), p.y.end());
+}
+
 }  // namespace fluidbed

@@ -149,12 +149,21 @@ nlohmann::json to_json(const PowerSpectrum& p) {
   return j;
 }
 
-void write_spectrum_csv(std::ostream& out, const PowerSpectrum& p) {
-  out << "f,psd\n";
+void write_spectrum_csv(std::ostream& out, const PowerSpectrum& p,
+                        const std::vector<SpectrumColumn>& more) {
+  out << "f,psd";
+  for (const SpectrumColumn& c : more) out << "," << c.name;
+  out << "\n";
   char buf[64];
   for (std::size_t b = 0; b < p.frequency.size(); ++b) {
-    const int n = std::snprintf(buf, sizeof buf, "%.9g,%.9g\n", p.frequency[b], p.psd[b]);
+    int n = std::snprintf(buf, sizeof buf, "%.9g,%.9g", p.frequency[b], p.psd[b]);
     out.write(buf, n);
+    for (const SpectrumColumn& c : more) {
+      const bool has = c.spectrum->psd.size() == p.psd.size();
+      n = has ? std::snprintf(buf, sizeof buf, ",%.9g", c.spectrum->psd[b]) : 1;
+      out.write(has ? buf : ",", n);
+    }
+    out << "\n";
   }
 }
 

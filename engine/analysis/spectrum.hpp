@@ -15,6 +15,7 @@
 // and its neighbours (in the logarithm of the density: exact for a Gaussian peak, which is what
 // a Hann window makes of a sine).
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -53,7 +54,15 @@ void fft_radix2(std::vector<double>& re, std::vector<double>& im);
 // {"dominant_frequency_hz", "dominant_frequency_refined_hz", "resolution_hz", "bin_hz",
 //  "segments", "segment_s", "sample_interval_s"} (the arrays go to a CSV).
 nlohmann::json to_json(const PowerSpectrum& p);
-// "f,psd\n" then one row per bin.
-void write_spectrum_csv(std::ostream& out, const PowerSpectrum& p);
+// Another spectrum of the same bins, as a further column of the CSV (its name in the header).
+struct SpectrumColumn {
+  std::string name;
+  const PowerSpectrum* spectrum = nullptr;
+};
+
+// "f,psd\n" then one row per bin; with `more`, a column of each after psd (a spectrum of other
+// bins leaves its cells empty where it has none).
+void write_spectrum_csv(std::ostream& out, const PowerSpectrum& p,
+                        const std::vector<SpectrumColumn>& more = {});
 
 }  // namespace fluidbed

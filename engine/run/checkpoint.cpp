@@ -89,7 +89,7 @@ void write_checkpoint(const std::string& run_dir, const Simulation& sim,
     out.flush();
     if (!out) throw InputError("cannot write " + p.string());
   }
-  std::string csv = timeseries_header(bubbles);
+  std::string csv = timeseries_header(bubbles, recorder.probes().size());
   for (const TimeseriesRow& row : recorder.rows()) csv += timeseries_line(row, bubbles);
   write_text(tmp / "timeseries.csv", csv);
   write_text(tmp / "scene.toml", "# the scene as run, every value resolved\n" + scene_toml);

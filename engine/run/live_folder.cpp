@@ -14,8 +14,13 @@ namespace fluidbed {
 namespace fs = std::filesystem;
 
 LiveRunFolder::LiveRunFolder(std::string dir, const std::string& scene, bool bubbles,
-                             double flush_interval, const std::string& start_csv)
-    : dir_(std::move(dir)), scene_(scene), bubbles_(bubbles), flush_interval_(flush_interval) {
+                             std::size_t probes, double flush_interval,
+                             const std::string& start_csv)
+    : dir_(std::move(dir)),
+      scene_(scene),
+      bubbles_(bubbles),
+      probes_(probes),
+      flush_interval_(flush_interval) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec) throw InputError("cannot create output folder " + dir_ + ": " + ec.message());
@@ -24,7 +29,8 @@ LiveRunFolder::LiveRunFolder(std::string dir, const std::string& scene, bool bub
   const std::string path = (fs::path(dir_) / "timeseries.csv").string();
   csv_ = std::fopen(path.c_str(), "w");
   if (!csv_) throw InputError("cannot write " + path);
-  std::fputs(start_csv.empty() ? timeseries_header(bubbles_).c_str() : start_csv.c_str(), csv_);
+  std::fputs(
+      start_csv.empty() ? timeseries_header(bubbles_, probes_).c_str() : start_csv.c_str(), csv_);
   std::fflush(csv_);
   last_flush_ = std::chrono::steady_clock::now();
 }

@@ -27,8 +27,8 @@ class LiveRunFolder {
   // Throws InputError when the folder or its files cannot be written.
   // A resumed run (run/checkpoint.hpp) passes the checkpoint's timeseries.csv as `start_csv`
   // (header included): the live file starts again from it, dropping any rows written after the
-  // checkpoint by the process that stopped.
-  LiveRunFolder(std::string dir, const std::string& scene, bool bubbles,
+  // checkpoint by the process that stopped. `probes`: the timeseries' probe columns.
+  LiveRunFolder(std::string dir, const std::string& scene, bool bubbles, std::size_t probes = 0,
                 double flush_interval = 1.0, const std::string& start_csv = {});
   ~LiveRunFolder();
   LiveRunFolder(const LiveRunFolder&) = delete;
@@ -50,6 +50,7 @@ class LiveRunFolder {
 
   std::string dir_, scene_;
   bool bubbles_ = false;
+  std::size_t probes_ = 0;
   double flush_interval_ = 1.0;
   std::FILE* csv_ = nullptr;
   std::string pending_;  // rows not yet written

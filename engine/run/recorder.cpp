@@ -8,6 +8,7 @@
 
 #include "analysis/cycles.hpp"
 #include "analysis/packing_metrics.hpp"
+#include "analysis/pressure_probe.hpp"
 #include "core/steps.hpp"
 
 namespace fluidbed {
@@ -21,6 +22,7 @@ RunRecorder::RunRecorder(const Simulation& sim, std::int64_t last_step, bool bub
   if (s.scene.kind == SceneKind::Drop) bounces_.emplace(sim.dem(), s.physics.gravity);
   last_gas_steps_ = sim.has_gas() ? sim.coupling_diagnostics().gas_steps : 0;
   has_gas_ = sim.has_gas();
+  if (has_gas_) probes_ = s.diagnostics.probes;  // the scene check refuses probes without gas
   energy_start_ = energy_state(sim.dem(), s.physics.gravity);
   ledger_start_ = sim.dem().energy_ledger();
   if (bubbles) {
@@ -109,6 +111,13 @@ void RunRecorder::write_row(const Simulation& sim) {
       bed_height_sum_ += pending_.bed_height;
       ++bed_height_samples_;
     }
+    pending_.bed_top = bed_top(sim.dem().particles());
+  }
+  if (!probes_.empty()) {
+    const GasSolver& g = *sim.gas();
+    pending_.probes.clear();
+    for (const ProbePoint& q : probes_)
+      pending_.probes.push_back(probe_pressure(g.grid(), g.pressure(), q.x, q.y));
   }
   if (bubbles_) {
     pending_.bubbles = bubbles_->bubbles_now();
@@ -116,6 +125,26 @@ void RunRecorder::write_row(const Simulation& sim) {
   }
   rows_.push_back(pending_);
   pending_ = TimeseriesRow{};
+}
+
+template <class Column>
+std::vector<double> RunRecorder::after_startup(Column&& column) const {
+  std::vector<double> v;
+  for (const auto& row : rows_)
+    if (row.t > startup_) v.push_back(column(row));
+  return v;
+}
+
+std::vector<double> RunRecorder::times_after_startup() const {
+  return after_startup([](const TimeseriesRow& r) { return r.t; });
+}
+
+PowerSpectrum RunRecorder::spectrum_after_startup(const std::vector<double>& series) const {
+  if (rows_.size() < 2) return PowerSpectrum{};
+  // The rows are one output interval apart, the last one possibly shorter (the run's end).
+  const double interval = rows_[1].t - rows_[0].t;
+  if (series.size() < 8 || !(interval > 0.0)) return PowerSpectrum{};
+  return welch_spectrum(series, interval);
 }
 
 nlohmann::json RunRecorder::summary(const Simulation& sim, double wall) const {
@@ -167,6 +196,8 @@ nlohmann::json RunRecorder::summary(const Simulation& sim, double wall) const {
   }
   if (bed_height_samples_ > 0)  // the bubbling bed's mean height after start-up (rows)
     j["bed_height_mean_m"] = bed_height_sum_ / static_cast<double>(bed_height_samples_);
+  if (has_gas_ || bed_) add_bed_top_summary(j);
+  if (!probes_.empty()) j["probes"] = probes_summary();
   if (s.scene.kind == SceneKind::Packing || s.scene.kind == SceneKind::Bed) {
     const PackingMetrics m = measure_packing(p, s.domain.width, s.domain.thickness);
     j["bed_height_m"] = m.bed_height;
@@ -200,13 +231,8 @@ void RunRecorder::add_gas_summary(const Simulation& sim, nlohmann::json& j) cons
   j["max_cfl"] = cfl_max_;
   j["third_law_error_max"] = third_law_max_;
   // How regular dp is after start-up (Figs 16-17): dominant period and cycle-length spread.
-  std::vector<double> ts, dps;
-  for (const auto& row : rows_)
-    if (row.t > startup_) {
-      ts.push_back(row.t);
-      dps.push_back(row.dp);
-    }
-  const CycleStats cyc = analyse_cycles(ts, dps);
+  const CycleStats cyc = analyse_cycles(
+      times_after_startup(), after_startup([](const TimeseriesRow& r) { return r.dp; }));
   j["dp_spectrum"] = to_json(dp_spectrum());
   // The period only where it is a cycle (analysis/cycles.hpp); the highest peak's period always.
   j["dp_dominant_period_s"] =
@@ -222,19 +248,87 @@ void RunRecorder::add_gas_summary(const Simulation& sim, nlohmann::json& j) cons
 }
 
 PowerSpectrum RunRecorder::dp_spectrum() const {
-  if (!has_gas_ || rows_.size() < 2) return PowerSpectrum{};
-  std::vector<double> dps;
-  for (const auto& row : rows_)
-    if (row.t > startup_) dps.push_back(row.dp);
-  // The rows are one output interval apart, the last one possibly shorter (the run's end).
-  const double interval = rows_[1].t - rows_[0].t;
-  if (dps.size() < 8 || !(interval > 0.0)) return PowerSpectrum{};
-  return welch_spectrum(dps, interval);
+  if (!has_gas_) return PowerSpectrum{};
+  return spectrum_after_startup(after_startup([](const TimeseriesRow& r) { return r.dp; }));
+}
+
+std::vector<PowerSpectrum> RunRecorder::probe_spectra() const {
+  std::vector<PowerSpectrum> out;
+  for (std::size_t k = 0; k < probes_.size(); ++k)
+    out.push_back(
+        spectrum_after_startup(after_startup([k](const TimeseriesRow& r) { return r.probes[k]; })));
+  return out;
 }
 
 namespace {
-constexpr const char* kRecorderTag = "FLBREC05";
-static_assert(std::is_trivially_copyable_v<TimeseriesRow>);
+
+// Mean and standard deviation (population) of a series; null for none.
+std::pair<nlohmann::json, nlohmann::json> mean_and_std(const std::vector<double>& v) {
+  if (v.empty()) return {nullptr, nullptr};
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  const double mean = sum / static_cast<double>(v.size());
+  double sq = 0.0;
+  for (double x : v) sq += (x - mean) * (x - mean);
+  return {mean, std::sqrt(sq / static_cast<double>(v.size()))};
+}
+
+// A spectrum's highest peak (Hz, refined), or null where it has none.
+nlohmann::json peak_hz(const PowerSpectrum& p) {
+  return p.ok && p.dominant_frequency_refined > 0.0 ? nlohmann::json(p.dominant_frequency_refined)
+                                                    : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+// The highest centre over the rows after start-up (the window of bed_height_mean_m): its mean,
+// range and the highest peak of its spectrum; null when no row is after start-up.
+void RunRecorder::add_bed_top_summary(nlohmann::json& j) const {
+  const std::vector<double> top = after_startup([](const TimeseriesRow& r) { return r.bed_top; });
+  j["bed_top_mean_m"] = mean_and_std(top).first;
+  j["bed_top_min_m"] = top.empty() ? nlohmann::json(nullptr)
+                                   : nlohmann::json(*std::min_element(top.begin(), top.end()));
+  j["bed_top_max_m"] = top.empty() ? nlohmann::json(nullptr)
+                                   : nlohmann::json(*std::max_element(top.begin(), top.end()));
+  j["bed_top_peak_hz"] = peak_hz(spectrum_after_startup(top));
+}
+
+// Each probe after start-up: where it is, its mean and standard deviation, the highest peak of
+// its spectrum and whether that peak is a regular cycle (analysis/cycles.hpp, the amplitude
+// judged against the standard deviation: the mean of a pressure against the outlet is the weight
+// of the bed above the probe, not a measure of its swings).
+nlohmann::json RunRecorder::probes_summary() const {
+  nlohmann::json list = nlohmann::json::array();
+  const std::vector<double> ts = times_after_startup();
+  const std::vector<PowerSpectrum> spectra = probe_spectra();
+  for (std::size_t k = 0; k < probes_.size(); ++k) {
+    const std::vector<double> p =
+        after_startup([k](const TimeseriesRow& r) { return r.probes[k]; });
+    const auto [mean, sd] = mean_and_std(p);
+    const CycleStats cyc = analyse_cycles(ts, p, CycleAmplitude::std);
+    const auto finite = [&](double v) {
+      return cyc.ok && std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    };
+    list.push_back({{"column", "p_probe_" + std::to_string(k + 1)},
+                    {"point_m", {probes_[k].x, probes_[k].y}},
+                    {"mean_pa", mean},
+                    {"std_pa", sd},
+                    {"peak_hz", peak_hz(spectra[k])},
+                    {"spectrum", to_json(spectra[k])},
+                    {"peak_period_s", finite(cyc.dominant_period)},
+                    {"dominant_period_s", finite(cyc.regular ? cyc.dominant_period : NAN)},
+                    {"cycle", cyc.ok ? cyc.verdict : "no regular cycle: record too short"},
+                    {"peak_prominence", finite(cyc.peak_prominence)},
+                    {"peak_amplitude_pa", finite(cyc.amplitude)},
+                    {"peak_amplitude_share", finite(cyc.amplitude_share)}});
+  }
+  return list;
+}
+
+namespace {
+// 06: the rows carry the bed top and the probes (each row saved with its probes' values).
+constexpr const char* kRecorderTag = "FLBREC06";
+static_assert(std::is_trivially_copyable_v<TimeseriesValues>);
 static_assert(std::is_trivially_copyable_v<EnergyBudget> &&
               std::is_trivially_copyable_v<EnergyLedger>);
 }  // namespace
@@ -266,8 +360,12 @@ void RunRecorder::restore(BinarySource& in) {
   fields(in);
   bool bounces = false, bubbles = false;
   in(bounces, bubbles);
+  const auto probes_differ = [&](const TimeseriesRow& r) {
+    return r.probes.size() != probes_.size();
+  };
   if (last_step != last_step_ || row_every != row_every_ || bed != bed_ || has_gas != has_gas_ ||
-      bounces != bounces_.has_value() || bubbles != bubbles_.has_value())
+      bounces != bounces_.has_value() || bubbles != bubbles_.has_value() ||
+      std::any_of(rows_.begin(), rows_.end(), probes_differ))
     in.fail("inconsistent (recorded for another scene or end time)");
   if (bounces_) bounces_->restore(in);
   if (bubbles_) bubbles_->restore(in);

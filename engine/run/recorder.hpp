@@ -18,7 +18,8 @@
 
 namespace fluidbed {
 
-struct TimeseriesRow {
+// The columns every run has: plain bytes, saved in a checkpoint as they are.
+struct TimeseriesValues {
   double t = 0.0;                       // s
   double dp = 0.0;                      // Pa
   double max_overlap_ratio = 0.0;       // largest over the interval since the previous row
@@ -41,6 +42,20 @@ struct TimeseriesRow {
   // m: the bed's height at the row (analysis/packing_metrics.hpp: the mean over 1 cm columns
   // of the highest centre in each).
   double bed_height = 0.0;
+  // m: the highest sphere centre at the row (analysis/packing_metrics.hpp: bed_top).
+  double bed_top = 0.0;
+};
+
+// One row of timeseries.csv: the columns every run has and one per pressure probe.
+struct TimeseriesRow : TimeseriesValues {
+  // Pa, each probe of diagnostics.probes in order: the gas pressure at its point minus the mean
+  // over the top row of cells (analysis/pressure_probe.hpp). Empty without probes.
+  std::vector<double> probes;
+
+  template <class Archive>
+  void fields(Archive& a) {
+    a(static_cast<TimeseriesValues&>(*this), probes);
+  }
 };
 
 class RunRecorder {
@@ -58,6 +73,10 @@ class RunRecorder {
   nlohmann::json summary(const Simulation& sim, double wall) const;
   // Welch's spectrum of dp after start-up (sampled at the rows; not ok without gas).
   PowerSpectrum dp_spectrum() const;
+  // The same of each probe's pressure, in the order of diagnostics.probes.
+  std::vector<PowerSpectrum> probe_spectra() const;
+  // The probes' points (diagnostics.probes): one timeseries column each.
+  const std::vector<ProbePoint>& probes() const { return probes_; }
   // The bubble analysis (null without --bubbles).
   const BubbleRecorder* bubbles() const { return bubbles_ ? &*bubbles_ : nullptr; }
   BubbleRecorder* bubbles() { return bubbles_ ? &*bubbles_ : nullptr; }
@@ -75,6 +94,14 @@ class RunRecorder {
   void write_row(const Simulation& sim);
   void add_gas_summary(const Simulation& sim, nlohmann::json& j) const;
   void add_drop_summary(nlohmann::json& j) const;
+  void add_bed_top_summary(nlohmann::json& j) const;
+  nlohmann::json probes_summary() const;
+  // A column's values over the rows after start-up, and their times.
+  template <class Column>
+  std::vector<double> after_startup(Column&& column) const;
+  std::vector<double> times_after_startup() const;
+  // Welch's spectrum of a column after start-up (not ok for fewer than 8 rows).
+  PowerSpectrum spectrum_after_startup(const std::vector<double>& series) const;
 
   std::int64_t first_step_ = 0, last_step_ = 0, row_every_ = 1;
   double startup_ = 0.0;  // s, averaging_start: where "after start-up" begins
@@ -82,6 +109,7 @@ class RunRecorder {
   std::optional<BounceTracker> bounces_;
   std::optional<BubbleRecorder> bubbles_;
   bool has_gas_ = false;
+  std::vector<ProbePoint> probes_;  // diagnostics.probes (the scene's, not saved)
   EnergyBudget energy_start_;      // the state's energy when recording began
   EnergyLedger ledger_start_;      // and the solver's ledger then
   std::vector<TimeseriesRow> rows_;

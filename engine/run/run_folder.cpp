@@ -140,8 +140,10 @@ RunEnd run_in_folder(const std::string& dir, RunJob& job, const RunControl& cont
       else
         o->start(sim, until);
     }
-    // The folder says what the run is doing while it runs (run/live_folder.hpp).
-    live.emplace(dir, s.scene.name, job.bubbles, 1.0,
+    // The folder says what the run is doing while it runs (run/live_folder.hpp); its timeseries
+    // has the recorder's probe columns (the scene's probes, measured in a gas only).
+    const std::size_t probes = sim.has_gas() ? s.diagnostics.probes.size() : 0;
+    live.emplace(dir, s.scene.name, job.bubbles, probes, 1.0,
                  checkpoint ? checkpoint->timeseries_csv : std::string());
     if (!job.scene_note.empty()) {
       std::ofstream scene_out(fs::path(dir) / "scene.toml");

@@ -105,6 +105,8 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   }
   result.summary = recorder.summary(sim, options.wall_before + wall_now());
   result.dp_spectrum = recorder.dp_spectrum();
+  result.probes = recorder.probes();
+  result.probe_spectra = recorder.probe_spectra();
   result.rows = recorder.take_rows();
   if (BubbleRecorder* b = recorder.bubbles()) {
     result.bubbles = true;
@@ -117,9 +119,10 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
 namespace {
 
 // Every column of timeseries.csv, in order: its name and its value in a row, each with its
-// printf format. The header and the rows are both written from this one list.
+// printf format. The header and the rows are both written from this one list. `probes`: the
+// number of probe columns (a row's own count of probe values).
 template <class F>
-void timeseries_columns(const TimeseriesRow& r, bool bubbles, F&& column) {
+void timeseries_columns(const TimeseriesRow& r, bool bubbles, std::size_t probes, F&& column) {
   const EnergyBudget& e = r.energy;
   column("t", "%.9g", r.t);
   column("dp", "%.9g", r.dp);
@@ -143,6 +146,10 @@ void timeseries_columns(const TimeseriesRow& r, bool bubbles, F&& column) {
   column("e_friction", "%.9g", e.friction);
   column("e_residual", "%.6g", e.residual);
   column("bed_height", "%.6g", r.bed_height);
+  column("bed_top", "%.6g", r.bed_top);
+  for (std::size_t k = 0; k < probes; ++k)
+    column(("p_probe_" + std::to_string(k + 1)).c_str(), "%.9g",
+           k < r.probes.size() ? r.probes[k] : 0.0);
   if (bubbles) {
     column("bubbles", "%d", r.bubbles);
     column("regime", "%s", to_string(r.regime));
@@ -151,23 +158,25 @@ void timeseries_columns(const TimeseriesRow& r, bool bubbles, F&& column) {
 
 }  // namespace
 
-std::string timeseries_header(bool bubbles) {
+std::string timeseries_header(bool bubbles, std::size_t probes) {
   std::string h;
-  timeseries_columns(TimeseriesRow{}, bubbles, [&](const char* name, const char*, const auto&) {
-    h += h.empty() ? "" : ",";
-    h += name;
-  });
+  timeseries_columns(TimeseriesRow{}, bubbles, probes,
+                     [&](const char* name, const char*, const auto&) {
+                       h += h.empty() ? "" : ",";
+                       h += name;
+                     });
   return h + "\n";
 }
 
 std::string timeseries_line(const TimeseriesRow& row, bool bubbles) {
   std::string csv;
   char value[64];
-  timeseries_columns(row, bubbles, [&](const char*, const char* format, const auto& v) {
-    std::snprintf(value, sizeof value, format, v);
-    csv += csv.empty() ? "" : ",";
-    csv += value;
-  });
+  timeseries_columns(row, bubbles, row.probes.size(),
+                     [&](const char*, const char* format, const auto& v) {
+                       std::snprintf(value, sizeof value, format, v);
+                       csv += csv.empty() ? "" : ",";
+                       csv += value;
+                     });
   return csv + "\n";
 }
 
@@ -175,13 +184,17 @@ void write_run_outputs(const std::string& dir, const RunResult& r) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError("cannot create output folder " + dir + ": " + ec.message());
-  std::string csv = timeseries_header(r.bubbles);
+  std::string csv = timeseries_header(r.bubbles, r.probes.size());
   for (const auto& row : r.rows) csv += timeseries_line(row, r.bubbles);
   const std::filesystem::path d(dir);
   write_file_atomically((d / "timeseries.csv").string(), [&](std::ostream& o) { o << csv; });
   if (r.dp_spectrum.ok)
-    write_file_atomically((d / "dp_spectrum.csv").string(),
-                          [&](std::ostream& o) { write_spectrum_csv(o, r.dp_spectrum); });
+    write_file_atomically((d / "dp_spectrum.csv").string(), [&](std::ostream& o) {
+      std::vector<SpectrumColumn> probes;
+      for (std::size_t k = 0; k < r.probe_spectra.size(); ++k)
+        probes.push_back({"psd_probe_" + std::to_string(k + 1), &r.probe_spectra[k]});
+      write_spectrum_csv(o, r.dp_spectrum, probes);
+    });
   if (r.bubbles) {
     write_file_atomically((d / "bubbles.csv").string(), [&](std::ostream& o) {
       write_bubbles_csv_header(o);

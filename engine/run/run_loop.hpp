@@ -55,17 +55,23 @@ struct RunResult {
   std::vector<BubbleRow> bubble_rows;  // bubbles.csv
   std::vector<MixingSample> mixing;  // mixing.csv
   PowerSpectrum dp_spectrum;         // dp_spectrum.csv (when ok)
+  // The probes' points (diagnostics.probes; each row carries one value per probe) and their
+  // spectra (dp_spectrum.csv's columns psd_probe_N).
+  std::vector<ProbePoint> probes;
+  std::vector<PowerSpectrum> probe_spectra;
 };
 
 // Steps `sim` to the end time. Throws SimulationFailure when the run blows up.
 RunResult run_simulation(Simulation& sim, const RunOptions& options);
 
 // Writes DIR/summary.json and DIR/timeseries.csv (each complete or not at all), and
-// DIR/dp_spectrum.csv, DIR/bubbles.csv and DIR/mixing.csv when the run has them.
+// DIR/dp_spectrum.csv (with a column per probe), DIR/bubbles.csv and DIR/mixing.csv when the run
+// has them.
 void write_run_outputs(const std::string& dir, const RunResult& r);
 
-// timeseries.csv's header (with the bubble columns or not) and one row of it, '\n' included.
-std::string timeseries_header(bool bubbles);
+// timeseries.csv's header (with the bubble columns or not, and a column per probe) and one row
+// of it (its probes' columns those the row carries), '\n' included.
+std::string timeseries_header(bool bubbles, std::size_t probes = 0);
 std::string timeseries_line(const TimeseriesRow& row, bool bubbles);
 
 }  // namespace fluidbed

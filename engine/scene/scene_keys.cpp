@@ -13,6 +13,7 @@ std::string type_of(int) { return "integer"; }
 std::string type_of(std::uint64_t) { return "integer"; }
 std::string type_of(bool) { return "true or false"; }
 std::string type_of(const std::string&) { return "text"; }
+std::string type_of(const std::vector<ProbePoint>&) { return "list of points"; }
 template <class E>
   requires is_option_v<E>
 std::string type_of(E) {
@@ -55,6 +56,8 @@ struct KeyCollector {
       k.range = "true, false";
     } else if constexpr (std::is_same_v<T, std::string>) {
       k.range = "any text";
+    } else if constexpr (std::is_same_v<T, std::vector<ProbePoint>>) {
+      k.range = "[x, y] in the gas domain";
     } else {
       k.range = info.range.text();
     }

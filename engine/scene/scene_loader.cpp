@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <toml++/toml.h>
 
@@ -40,17 +41,40 @@ struct Reader {
     throw InputError(where(key) + " must be " + expected + ", not " + describe(n));
   }
 
+  // A number (an integer reads as one); nothing for another type.
+  static std::optional<double> number(const toml::node& n) {
+    if (auto v = n.value_exact<double>()) return *v;
+    if (auto i = n.value_exact<std::int64_t>()) return static_cast<double>(*i);
+    return std::nullopt;
+  }
+
   void operator()(std::string_view key, double& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
     if (!n) return;
-    if (auto v = n->value_exact<double>()) {
-      field = *v;
-    } else if (auto i = n->value_exact<std::int64_t>()) {
-      field = static_cast<double>(*i);
-    } else {
-      type_error(key, *n, "a number");
-    }
+    const std::optional<double> v = number(*n);
+    if (!v) type_error(key, *n, "a number");
+    field = *v;
     if (!std::isfinite(field)) throw InputError(where(key) + " must be a finite number");
+  }
+  // Points: an array of [x, y] arrays of two finite numbers each.
+  void operator()(std::string_view key, std::vector<ProbePoint>& field, const FieldInfo&) const {
+    const toml::node* n = table.get(key);
+    if (!n) return;
+    const toml::array* points = n->as_array();
+    if (!points) type_error(key, *n, "an array of points [[x, y], ...]");
+    field.clear();
+    for (std::size_t k = 0; k < points->size(); ++k) {
+      const toml::array* xy = (*points)[k].as_array();
+      std::optional<double> x, y;
+      if (xy && xy->size() == 2) {
+        x = number(*xy->get(0));
+        y = number(*xy->get(1));
+      }
+      if (!x || !y || !std::isfinite(*x) || !std::isfinite(*y))
+        throw InputError(where(key) + ": point " + std::to_string(k + 1) +
+                         " must be [x, y], two finite numbers in metres");
+      field.push_back({*x, *y});
+    }
   }
   void operator()(std::string_view key, int& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
@@ -200,6 +224,11 @@ struct TomlWriter {
   std::ostringstream* out;
   template <class T>
   void operator()(std::string_view key, const T& v, const FieldInfo& info) const {
+    // No probes are left out rather than written as [], so that a scene without them resolves
+    // to the text it had before the key existed: the packed-bed and U_mf caches are keyed on
+    // that text, and a run's resolved scene.toml stays as it was.
+    if constexpr (std::is_same_v<T, std::vector<ProbePoint>>)
+      if (v.empty()) return;
     *out << key << " = " << toml_value(v);
     if (!info.unit.empty()) *out << "  # " << info.unit;
     *out << "\n";

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "scene/field_info.hpp"
 #include "scene/options.hpp"
@@ -120,11 +121,21 @@ struct CouplingSettings {
   int particle_steps_per_gas_step = 1;
 };
 
+// A point where the gas pressure is recorded (diagnostics.probes), inside the gas domain.
+struct ProbePoint {
+  double x = 0.0;  // m, from the left wall
+  double y = 0.0;  // m, from the bottom
+  bool operator==(const ProbePoint&) const = default;
+};
+
 struct DiagnosticsSettings {
   double output_interval = 1e-3;   // s, one timeseries row per interval
   double averaging_start = 1.0;    // s, tau_1 of eq 30; also where "after start-up" begins
   double overlap_limit = 0.2;      // overlap ratio treated as a runaway (the run fails)
   std::string save_state;          // write the final state here (relative to --out)
+  // Pressure probes: each a timeseries column p_probe_N (N from 1), the gas pressure at the
+  // point against the outlet's (run/recorder.hpp), and an entry of the summary's `probes`.
+  std::vector<ProbePoint> probes;
 };
 
 // Bubble and slug analysis (`run --bubbles`; analysis/bubbles.hpp says how each is used).
@@ -255,6 +266,8 @@ void visit_fields(DiagnosticsSettings& s, V&& v) {
     {"", unit_fraction, "overlap ratio taken as a runaway: the run fails"});
   v("save_state", s.save_state,
     {"", any, "write the final state to this file, relative to --out (empty: none)"});
+  v("probes", s.probes,
+    {"m", any, "gas pressure probes [[x, y], ...]: a timeseries column p_probe_N each"});
 }
 
 template <class V>

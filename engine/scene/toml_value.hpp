@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include "scene/options.hpp"
+#include "scene/settings.hpp"
 
 namespace fluidbed {
 
@@ -29,6 +30,13 @@ template <class E>
   requires is_option_v<E>
 std::string toml_value(E v) {
   return toml_value(option_string(v));
+}
+// Points as an array of [x, y] arrays: [[0.045, 0.045], [0.075, 0.1]]; none: [].
+inline std::string toml_value(const std::vector<ProbePoint>& points) {
+  std::string out = "[";
+  for (const ProbePoint& p : points)
+    out += (out.size() > 1 ? ", [" : "[") + toml_value(p.x) + ", " + toml_value(p.y) + "]";
+  return out + "]";
 }
 
 }  // namespace fluidbed

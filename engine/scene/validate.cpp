@@ -140,6 +140,21 @@ void validate(const Settings& s) {
              "makes gas cells smaller than a particle (cells must be at least one "
              "particles.diameter wide and high)");
   }
+  // Each probe inside the gas domain (the bed's box; on its walls allowed).
+  for (std::size_t k = 0; k < s.diagnostics.probes.size(); ++k) {
+    const ProbePoint& q = s.diagnostics.probes[k];
+    char where[96];
+    std::snprintf(where, sizeof where, "has probe %zu at (%g, %g) m", k + 1, q.x, q.y);
+    if (!g.enabled)
+      refuse("diagnostics.probes",
+             std::string(where) + " but the scene has no gas ([gas]) to measure");
+    if (q.x < 0.0 || q.x > d.width || q.y < 0.0 || q.y > d.height) {
+      char domain[96];
+      std::snprintf(domain, sizeof domain, "x in [0, %g] m, y in [0, %g] m", d.width, d.height);
+      refuse("diagnostics.probes",
+             std::string(where) + " outside the gas domain (" + domain + ")");
+    }
+  }
   if (s.inlet.jet_width * s.inlet.jets > d.width)
     refuse("inlet.jet_width", "times inlet.jets is wider than domain.width");
 }

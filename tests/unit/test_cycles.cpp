@@ -55,14 +55,15 @@ namespace {
 
 // 6 s of a signal sampled every ms from t = 1 s, as a run's dp after start-up.
 template <class F>
-fluidbed::CycleStats cycles_of(F signal) {
+fluidbed::CycleStats cycles_of(F signal,
+                               fluidbed::CycleAmplitude against = fluidbed::CycleAmplitude::mean) {
   std::vector<double> t, y;
   for (int k = 0; k < 6000; ++k) {
     const double tt = 1.0 + 1e-3 * k;
     t.push_back(tt);
     y.push_back(signal(tt, k));
   }
-  return analyse_cycles(t, y);
+  return analyse_cycles(t, y, against);
 }
 
 }  // namespace
@@ -134,4 +135,47 @@ TEST(Cycles, SmallOscillationIsNoRegularCycle) {
   EXPECT_GT(c.peak_prominence, fluidbed::kProminence);
   EXPECT_FALSE(c.regular) << c.verdict;
   EXPECT_NE(c.verdict.find("of the mean"), std::string::npos) << c.verdict;
+}
+
+TEST(Cycles, AProbesCycleIsJudgedAgainstItsStandardDeviation) {
+  using fluidbed::CycleAmplitude;
+  // A probe's pressure against the outlet: 3000 Pa of bed above it and a 0.43 s cycle of 116 Pa
+  // (a standard deviation of 82 Pa, van Wachem's measured one) with 20 Pa of noise. Against the
+  // mean the swing is 4 %, no cycle; against the standard deviation it is 1.4 times it, a cycle.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 20.0);
+  std::vector<double> y;
+  for (int k = 0; k < 6000; ++k)
+    y.push_back(3000.0 + 116.0 * std::sin(2.0 * M_PI * (1.0 + 1e-3 * k) / 0.43) + noise(rng));
+  const auto by_mean = cycles_of([&](double, int k) { return y[k]; });
+  EXPECT_FALSE(by_mean.regular);
+  EXPECT_NE(by_mean.verdict.find("of the mean"), std::string::npos) << by_mean.verdict;
+  const auto by_std = cycles_of([&](double, int k) { return y[k]; }, CycleAmplitude::std);
+  EXPECT_TRUE(by_std.regular) << by_std.verdict;
+  EXPECT_NEAR(by_std.dominant_period, 0.43, 0.43 * 0.05);
+  EXPECT_NEAR(by_std.amplitude_share, 116.0 / std::hypot(116.0 / std::sqrt(2.0), 20.0), 0.05);
+  // The same verdict with the mean taken off (the measured "relative pressure"): the mean
+  // plays no part.
+  const auto relative =
+      cycles_of([&](double, int k) { return y[k] - 3000.0; }, CycleAmplitude::std);
+  EXPECT_TRUE(relative.regular) << relative.verdict;
+
+  // A clean 50 Pa tone under 420 Pa of fast noise (white noise differenced: its power is at high
+  // frequencies, so the tone stands far above its own neighbourhood) is no cycle of the probe:
+  // it carries 0.7 % of the signal's variance.
+  std::normal_distribution<double> white(0.0, 300.0);
+  double last = 0.0;
+  const auto tone = cycles_of(
+      [&](double t, int) {
+        const double w = white(rng), d = w - last;
+        last = w;
+        return 50.0 * std::sin(2.0 * M_PI * t / 0.45) + d;
+      },
+      CycleAmplitude::std);
+  ASSERT_TRUE(tone.ok);
+  EXPECT_NEAR(tone.dominant_period, 0.45, 0.45 * 0.05);
+  EXPECT_GT(tone.peak_prominence, fluidbed::kProminence);
+  EXPECT_FALSE(tone.regular);
+  EXPECT_NE(tone.verdict.find("of the standard deviation (50 % needed)"), std::string::npos)
+      << tone.verdict;
 }

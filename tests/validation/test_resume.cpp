@@ -13,6 +13,7 @@
 #include <string>
 
 #include "../test_support.hpp"
+#include "core/errors.hpp"
 #include "run/checkpoint.hpp"
 #include "run/run_loop.hpp"
 #include "scene/scene_loader.hpp"
@@ -23,41 +24,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// 300 spheres of the paper on a lattice 6 cm tall, landing on the jet (gas stepped every 20
-// particle steps): by 0.12 s (8000 steps, 0.15 s of wall time here) dp carries 40 % of the bed's
-// weight and 70 contacts hold history.
 fs::path write_scene(const fs::path& dir) {
   const fs::path p = dir / "small.toml";
-  write_file(p, R"([scene]
-name = "resume-test"
-kind = "bed"
-
-[particles]
-count = 300
-placement = "lattice"
-fill_height = 0.06
-seed = 7
-
-[domain]
-height = 0.3
-
-[gas]
-cells_y = 15
-
-[inlet]
-kind = "jet"
-superficial_velocity = 2.5
-
-[coupling]
-particle_steps_per_gas_step = 20
-
-[time]
-end = 0.12
-
-[diagnostics]
-output_interval = 1e-3
-averaging_start = 0.04
-)");
+  write_file(p, small_jet_bed_toml("resume-test"));
   return p;
 }
 
@@ -110,10 +79,10 @@ nlohmann::json run_numbers(const fs::path& dir) {
 }
 
 // The engine's side alone, stopped at an exact step: the run to `stop_step` with a checkpoint at
-// the stop, then a new simulation of the same scene resumed from it to the end.
-// `since_gas`: the particle steps between the last gas step and the stop.
+// the stop, then a new simulation of the same scene (or of `resume_as`) resumed from it to the
+// end. `since_gas`: the particle steps between the last gas step and the stop.
 RunResult stopped_and_resumed(const Settings& s, std::int64_t stop_step, const fs::path& dir,
-                              int* since_gas = nullptr) {
+                              int* since_gas = nullptr, const Settings* resume_as = nullptr) {
   Simulation first(s);
   RunOptions o;
   o.stop = [&] { return first.steps() == stop_step; };
@@ -122,7 +91,7 @@ RunResult stopped_and_resumed(const Settings& s, std::int64_t stop_step, const f
   };
   EXPECT_FALSE(run_simulation(first, o).completed);
   const Checkpoint c = read_checkpoint(dir.string());
-  Simulation second(s);
+  Simulation second(resume_as ? *resume_as : s);
   restore_simulation(c, second);
   EXPECT_EQ(second.steps(), stop_step);
   if (since_gas) *since_gas = second.steps_since_gas_step();
@@ -192,6 +161,62 @@ TEST(Resume, EngineCheckpointAtAnyStepIsBitExact) {
     SCOPED_TRACE(stop);
     expect_same_run(stopped_and_resumed(drop, stop, dir), ref_drop);
   }
+}
+
+// With pressure probes: their columns, the bed top and the probes' summary come out of a stopped
+// and resumed run as out of one never stopped (the rows are saved with their probes' values).
+TEST(Resume, ProbesResumeBitExact) {
+  const fs::path dir = temp_dir("resume-probes");
+  Settings bed = load_scene(write_scene(dir).string(),
+                            {"diagnostics.probes=[[0.045, 0.015], [0.075, 0.1]]"});
+  bed.time.end = 0.06;
+  Simulation whole(bed);
+  const RunResult ref = run_simulation(whole, RunOptions{});
+  ASSERT_EQ(ref.rows.back().probes.size(), 2u);
+  ASSERT_TRUE(ref.summary.contains("probes"));
+  for (std::int64_t stop : {std::int64_t{1803}, std::int64_t{2900}}) {
+    SCOPED_TRACE(stop);
+    const RunResult resumed = stopped_and_resumed(bed, stop, dir);
+    expect_same_run(resumed, ref);
+    ASSERT_EQ(resumed.rows.size(), ref.rows.size());
+    for (std::size_t k = 0; k < ref.rows.size(); ++k)
+      ASSERT_EQ(resumed.rows[k].probes, ref.rows[k].probes) << "row " << k;
+  }
+  // A checkpoint of a run with probes is refused by a recorder without them.
+  Settings plain = bed;
+  plain.diagnostics.probes.clear();
+  EXPECT_THROW(stopped_and_resumed(bed, 1000, dir, nullptr, &plain), InputError);
+}
+
+// The program's side with probes: a run stopped by SIGTERM and resumed writes the timeseries
+// (its probe columns from the checkpoint's rows and the live file's header), the summary and
+// dp_spectrum.csv of the run never stopped.
+TEST(Resume, SigtermThenResumeWithProbes) {
+  const fs::path dir = temp_dir("resume-probes-cli");
+  const fs::path scene = dir / "probes.toml";
+  std::string text = read_file(write_scene(dir));
+  const std::string last = "averaging_start = 0.04\n";
+  text.replace(text.find(last), last.size(), last + "probes = [[0.045, 0.015], [0.075, 0.1]]\n");
+  write_file(scene, text);
+  const fs::path ref = dir / "reference";
+  const double whole = timed_run(scene, ref);
+  ASSERT_NE(read_file(ref / "timeseries.csv").find(",bed_top,p_probe_1,p_probe_2\n"),
+            std::string::npos);
+  int stopped = 0;
+  for (int attempt = 0; attempt < 8 && stopped < 1; ++attempt) {
+    const fs::path run = dir / ("run" + std::to_string(attempt));
+    fs::create_directories(run);
+    const int rc = run_and_terminate(scene, run, whole * (0.3 + 0.05 * attempt));
+    if (rc == 0) continue;  // finished before the signal
+    ASSERT_EQ(rc, 130) << read_file(run / "err.txt");
+    ++stopped;
+    const CommandResult resumed = run_fluidbed("run --resume " + quoted(run), "resume-probes");
+    ASSERT_EQ(resumed.status, 0) << resumed.err;
+    EXPECT_EQ(read_file(run / "timeseries.csv"), read_file(ref / "timeseries.csv"));
+    EXPECT_EQ(read_file(run / "dp_spectrum.csv"), read_file(ref / "dp_spectrum.csv"));
+    EXPECT_EQ(run_numbers(run), run_numbers(ref));
+  }
+  EXPECT_EQ(stopped, 1);
 }
 
 TEST(Resume, SigtermThenResumeGivesTheUninterruptedRunsBits) {
