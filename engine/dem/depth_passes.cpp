@@ -39,8 +39,8 @@ ContactForce3 advance_contact(History& h, std::size_t k, const ContactParams& pa
 void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremental,
                                 StepPartial& acc) {
   const Particles& P = state_.particles;
-  const DepthKernelParticles pk{P.x.data(),  P.y.data(),  P.z.data(),      P.vx.data(),
-                                P.vy.data(), P.vz.data(), P.wx.data(),     P.wy.data(),
+  const DepthKernelParticles pk{P.x.data(),  P.y.data(),      P.z.data(),          P.vx.data(),
+                                P.vy.data(), P.vz.data(),     P.wx.data(),         P.wy.data(),
                                 P.w.data(),  P.radius.data(), P.inv_inertia.data()};
   NeighbourList& L = list_;
   PairSlots& S = L.slots();
@@ -56,11 +56,11 @@ void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremen
       list_touching(code, S.touching.data(), k0, k1, on, max_ratio, worst,
                     [&](std::int64_t k) { ldn[k] = lds[k] = lds_y[k] = lds_z[k] = 0.0; });
   ContactScratch& cs = L.contact_scratch;
-  const DepthContactOut out{cs.dn.data() + k0,      cs.ds.data() + k0,     cs.ds_y.data() + k0,
-                            cs.ds_z.data() + k0,    cs.fx.data() + k0,     cs.fy.data() + k0,
-                            cs.fz.data() + k0,      cs.ftx.data() + k0,    cs.fty.data() + k0,
-                            cs.ft.data() + k0,      cs.roll_x.data() + k0, cs.roll_y.data() + k0,
-                            cs.roll.data() + k0,    cs.ratio.data() + k0,  cs.dashpot.data() + k0,
+  const DepthContactOut out{cs.dn.data() + k0,       cs.ds.data() + k0,     cs.ds_y.data() + k0,
+                            cs.ds_z.data() + k0,     cs.fx.data() + k0,     cs.fy.data() + k0,
+                            cs.fz.data() + k0,       cs.ftx.data() + k0,    cs.fty.data() + k0,
+                            cs.ft.data() + k0,       cs.roll_x.data() + k0, cs.roll_y.data() + k0,
+                            cs.roll.data() + k0,     cs.ratio.data() + k0,  cs.dashpot.data() + k0,
                             cs.friction.data() + k0, cs.sliding.data() + k0};
   depth_contacts({pk, li, lj, ldn, lds, lds_y, lds_z, on, count, params_, incremental, dtau}, out);
   int sliding = 0;

@@ -46,9 +46,9 @@ __attribute__((always_inline)) inline void classify_loop(const PairKernelParticl
 // vectorising it).
 template <bool Incremental>
 __attribute__((always_inline)) inline void contacts_loop(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-    const double* ldn, const double* lds, const std::int32_t* on, std::int64_t count,
-    const ContactParams& params, double dtau, const PairContactOut& out) {
+    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj, const double* ldn,
+    const double* lds, const std::int32_t* on, std::int64_t count, const ContactParams& params,
+    double dtau, const PairContactOut& out) {
   const double *x = p.x, *y = p.y, *vx = p.vx, *vy = p.vy, *w = p.w, *r = p.r;
   const double kn = params.kn, kt = params.kt, eta_n = params.eta_n, eta_t = params.eta_t,
                mu = params.mu;
@@ -77,7 +77,7 @@ __attribute__((always_inline)) inline void contacts_loop(
     const double since = ww <= 0.0 ? 0.0 : since_raw;
     const double tau = (fresh & Incremental) ? std::min(since, dtau) : dtau;
     const double dn = Incremental ? ldn[k] + vn * tau : R - Lc;  // eqs 14, 16
-    const double ds_before = lds[k] + vt * tau;                 // eqs 15, 17
+    const double ds_before = lds[k] + vt * tau;                  // eqs 15, 17
     // contact_force and contact_loss, branch-free.
     const double fn_spring = -kn * std::max(dn, 0.0);  // eq 3
     const double fn = fn_spring - eta_n * vn;          // eq 6
@@ -204,10 +204,8 @@ __attribute__((always_inline)) inline void depth_loop(const DepthContactIn& in,
   const std::int64_t count = in.count;
 #pragma omp simd
   for (std::int64_t q = 0; q < count; ++q) {
-    const std::int32_t s = on[q];
-    const bool fresh = s < 0;
-    const std::int32_t k = s ^ (s >> 31);  // ~s for a fresh contact
-    const std::int32_t i = li[k], j = lj[k];
+    const bool fresh = on[q] < 0;  // listed as ~k
+    const std::int32_t k = listed_slot(on[q]), i = li[k], j = lj[k];
     const double px = x[j] - x[i], py = y[j] - y[i], pz = z[j] - z[i];
     const double R = r[i] + r[j];
     const double L2 = px * px + py * py + pz * pz;
@@ -242,10 +240,10 @@ __attribute__((always_inline)) inline void depth_loop(const DepthContactIn& in,
     const double s1y = turn ? (in_plane ? scale * ipy : 0.0) : s0y;
     const double s1z = turn ? (in_plane ? scale * ipz : 0.0) : s0z;
     const double sbx = s1x + tau * vtx, sby = s1y + tau * vty, sbz = s1z + tau * vtz;  // eqs 15, 17
-    const double fn_spring = -kn * std::max(dn, 0.0);  // eq 3
-    const double fn = fn_spring - eta_n * vn;          // eq 6
-    const double fsx = -kt * sbx, fsy = -kt * sby, fsz = -kt * sbz;  // eq 4
-    const double limit = mu * std::fabs(fn_spring);                  // eq 5
+    const double fn_spring = -kn * std::max(dn, 0.0);                                  // eq 3
+    const double fn = fn_spring - eta_n * vn;                                          // eq 6
+    const double fsx = -kt * sbx, fsy = -kt * sby, fsz = -kt * sbz;                    // eq 4
+    const double limit = mu * std::fabs(fn_spring);                                    // eq 5
     const double spring_len = std::sqrt(fsx * fsx + fsy * fsy + fsz * fsz);
     const bool sliding = spring_len > limit;
     const double cap = limit / spring_len;

@@ -115,6 +115,8 @@ std::int64_t list_touching(const std::uint8_t* code, std::uint8_t* touch, std::i
 }
 
 // The slot of a listed contact (on[q] is k, or ~k for a fresh one).
-inline std::int32_t listed_slot(std::int32_t s) { return s ^ (s >> 31); }
+inline std::int32_t listed_slot(std::int32_t s) {
+  return s ^ (s >> 31);
+}
 
 }  // namespace fluidbed

@@ -108,6 +108,55 @@ KernelContact scalar_contact(const KernelPairs& s, std::int32_t slot, const Cont
           1.0 - L / R, loss.dashpot, loss.friction,         f.sliding ? 1 : 0};
 }
 
+// Every build of a classify kernel (classify(b, code) for slots [k0, n)) against want(k), the
+// scalar test's code of slot k; then the build the loader chose (chosen(code)) against the
+// baseline. The sample must hold all three kinds.
+template <class Classify, class Chosen, class Want>
+void expect_codes_of_every_build(std::int64_t k0, std::int64_t n, Classify classify, Chosen chosen,
+                                 Want want) {
+  int touching = 0, apart = 0, coincident = 0;
+  const auto m = static_cast<std::size_t>(n - k0);
+  for (SimdBuild b : fluidbed::kSimdBuilds) {
+    if (!fluidbed::cpu_runs(b)) continue;
+    SCOPED_TRACE(fluidbed::to_string(b));
+    std::vector<std::uint8_t> code(m, 255);
+    classify(b, code.data());
+    for (std::int64_t k = k0; k < n; ++k) {
+      const int w = want(k);
+      ASSERT_EQ(code[static_cast<std::size_t>(k - k0)], w) << "pair " << k;
+      touching += w == 1;
+      apart += w == 0;
+      coincident += w == 2;
+    }
+  }
+  EXPECT_GT(touching, 1000);
+  EXPECT_GT(apart, 100);
+  EXPECT_GT(coincident, 10);
+  std::vector<std::uint8_t> loaded(m), baseline(m);
+  chosen(loaded.data());
+  classify(SimdBuild::baseline, baseline.data());
+  EXPECT_EQ(loaded, baseline);
+}
+
+// Calls check(b, law, incremental, dtau) for every build the CPU runs, every law and both
+// displacement forms (with a step that differs by law); returns how many builds ran.
+template <class Check>
+int for_every_build_law_and_form(std::size_t laws, Check check) {
+  int builds = 0;
+  for (SimdBuild b : fluidbed::kSimdBuilds) {
+    if (!fluidbed::cpu_runs(b)) continue;
+    ++builds;
+    SCOPED_TRACE(fluidbed::to_string(b));
+    for (std::size_t law = 0; law < laws; ++law)
+      for (const bool incremental : {true, false}) {
+        SCOPED_TRACE(::testing::Message()
+                     << "law " << law << (incremental ? ", incremental" : ", geometric"));
+        check(b, law, incremental, 1.5e-5 * static_cast<double>(law + 1));
+      }
+  }
+  return builds;
+}
+
 }  // namespace
 
 // Which pairs touch: 1 closer than the sum of the radii, 2 for coincident centres, 0 otherwise
@@ -116,34 +165,21 @@ TEST(PairKernel, EveryBuildClassifiesPairsAsTheScalarTest) {
   const KernelPairs s = random_pairs(4099, 1);
   const auto n = static_cast<std::int64_t>(s.li.size());
   const std::int64_t k0 = 3;
-  int touching = 0, apart = 0, coincident = 0;
-  for (SimdBuild b : fluidbed::kSimdBuilds) {
-    if (!fluidbed::cpu_runs(b)) continue;
-    SCOPED_TRACE(fluidbed::to_string(b));
-    std::vector<std::uint8_t> code(static_cast<std::size_t>(n - k0), 255);
-    fluidbed::classify_pairs_on(b, s.particles(), s.li.data(), s.lj.data(), k0, n, code.data());
-    for (std::int64_t k = k0; k < n; ++k) {
-      const std::int32_t i = s.li[k], j = s.lj[k];
-      const double px = s.x[j] - s.x[i], py = s.y[j] - s.y[i];
-      const double R = s.r[i] + s.r[j];
-      const double L2 = px * px + py * py;
-      const int want = L2 <= 0.0 ? 2 : (L2 < R * R ? 1 : 0);
-      ASSERT_EQ(code[static_cast<std::size_t>(k - k0)], want) << "pair " << k;
-      touching += want == 1;
-      apart += want == 0;
-      coincident += want == 2;
-    }
-  }
-  // The sample has all three kinds.
-  EXPECT_GT(touching, 1000);
-  EXPECT_GT(apart, 100);
-  EXPECT_GT(coincident, 10);
-  // The build the loader chose gives the same codes.
-  std::vector<std::uint8_t> chosen(static_cast<std::size_t>(n - k0)), baseline(chosen.size());
-  fluidbed::classify_pairs(s.particles(), s.li.data(), s.lj.data(), k0, n, chosen.data());
-  fluidbed::classify_pairs_on(SimdBuild::baseline, s.particles(), s.li.data(), s.lj.data(), k0, n,
-                              baseline.data());
-  EXPECT_EQ(chosen, baseline);
+  expect_codes_of_every_build(
+      k0, n,
+      [&](SimdBuild b, std::uint8_t* code) {
+        fluidbed::classify_pairs_on(b, s.particles(), s.li.data(), s.lj.data(), k0, n, code);
+      },
+      [&](std::uint8_t* code) {
+        fluidbed::classify_pairs(s.particles(), s.li.data(), s.lj.data(), k0, n, code);
+      },
+      [&](std::int64_t k) {
+        const std::int32_t i = s.li[k], j = s.lj[k];
+        const double px = s.x[j] - s.x[i], py = s.y[j] - s.y[i];
+        const double R = s.r[i] + s.r[j];
+        const double L2 = px * px + py * py;
+        return L2 <= 0.0 ? 2 : (L2 < R * R ? 1 : 0);
+      });
 }
 
 // The contact kernel against contact_force and contact_loss to the bit (force, history, overlap
@@ -163,49 +199,39 @@ TEST(PairKernel, EveryBuildGivesTheScalarContactLawToTheBit) {
   };
   const auto count = static_cast<std::int64_t>(s.on.size());
   const auto n = static_cast<std::size_t>(count);
-  int builds = 0, sliding = 0, sticking = 0, fresh = 0, apart = 0;
-  for (SimdBuild b : fluidbed::kSimdBuilds) {
-    if (!fluidbed::cpu_runs(b)) continue;
-    ++builds;
-    SCOPED_TRACE(fluidbed::to_string(b));
-    for (std::size_t law = 0; law < laws.size(); ++law) {
-      for (const bool incremental : {true, false}) {
-        SCOPED_TRACE(::testing::Message()
-                     << "law " << law << (incremental ? ", incremental" : ", geometric"));
-        const double dtau = 1.5e-5 * static_cast<double>(law + 1);
-        // History as the caller hands it: cleared for a new contact.
-        std::vector<double> hdn = s.dn, hds = s.ds;
-        for (std::int32_t slot : s.on)
-          if (slot < 0)
-            hdn[static_cast<std::size_t>(~slot)] = hds[static_cast<std::size_t>(~slot)] = 0.0;
-        std::vector<double> dn(n, -1.0), ds(n, -1.0), fx(n, -1.0), fy(n, -1.0), ft(n, -1.0),
-            ratio(n, -1.0), dashpot(n, -1.0), friction(n, -1.0);
-        std::vector<std::int32_t> slides(n, -1);
-        const fluidbed::PairContactOut out{dn.data(),      ds.data(),       fx.data(),
-                                           fy.data(),      ft.data(),       ratio.data(),
-                                           dashpot.data(), friction.data(), slides.data()};
-        fluidbed::pair_contacts_on(b, s.particles(), s.li.data(), s.lj.data(), hdn.data(),
-                                   hds.data(), s.on.data(), count, laws[law], incremental, dtau,
-                                   out);
-        for (std::size_t q = 0; q < n; ++q) {
-          const KernelContact want = scalar_contact(s, s.on[q], laws[law], incremental, dtau);
-          ASSERT_EQ(bits_of(dn[q]), bits_of(want.dn)) << "contact " << q;
-          ASSERT_EQ(bits_of(ds[q]), bits_of(want.ds)) << "contact " << q;
-          ASSERT_EQ(bits_of(fx[q]), bits_of(want.fx)) << "contact " << q;
-          ASSERT_EQ(bits_of(fy[q]), bits_of(want.fy)) << "contact " << q;
-          ASSERT_EQ(bits_of(ft[q]), bits_of(want.ft)) << "contact " << q;
-          ASSERT_EQ(bits_of(ratio[q]), bits_of(want.ratio)) << "contact " << q;
-          ASSERT_EQ(bits_of(dashpot[q]), bits_of(want.dashpot)) << "contact " << q;
-          ASSERT_EQ(bits_of(friction[q]), bits_of(want.friction)) << "contact " << q;
-          ASSERT_EQ(slides[q], want.sliding) << "contact " << q;
-          sliding += want.sliding;
-          sticking += 1 - want.sliding;
-          fresh += s.on[q] < 0;
-          apart += want.ratio <= 0.0;
-        }
-      }
+  int sliding = 0, sticking = 0, fresh = 0, apart = 0;
+  const int builds = for_every_build_law_and_form(laws.size(), [&](SimdBuild b, std::size_t law,
+                                                                   bool incremental, double dtau) {
+    // History as the caller hands it: cleared for a new contact.
+    std::vector<double> hdn = s.dn, hds = s.ds;
+    for (std::int32_t slot : s.on)
+      if (slot < 0)
+        hdn[static_cast<std::size_t>(~slot)] = hds[static_cast<std::size_t>(~slot)] = 0.0;
+    std::vector<double> dn(n, -1.0), ds(n, -1.0), fx(n, -1.0), fy(n, -1.0), ft(n, -1.0),
+        ratio(n, -1.0), dashpot(n, -1.0), friction(n, -1.0);
+    std::vector<std::int32_t> slides(n, -1);
+    const fluidbed::PairContactOut out{dn.data(),      ds.data(),       fx.data(),
+                                       fy.data(),      ft.data(),       ratio.data(),
+                                       dashpot.data(), friction.data(), slides.data()};
+    fluidbed::pair_contacts_on(b, s.particles(), s.li.data(), s.lj.data(), hdn.data(), hds.data(),
+                               s.on.data(), count, laws[law], incremental, dtau, out);
+    for (std::size_t q = 0; q < n; ++q) {
+      const KernelContact want = scalar_contact(s, s.on[q], laws[law], incremental, dtau);
+      ASSERT_EQ(bits_of(dn[q]), bits_of(want.dn)) << "contact " << q;
+      ASSERT_EQ(bits_of(ds[q]), bits_of(want.ds)) << "contact " << q;
+      ASSERT_EQ(bits_of(fx[q]), bits_of(want.fx)) << "contact " << q;
+      ASSERT_EQ(bits_of(fy[q]), bits_of(want.fy)) << "contact " << q;
+      ASSERT_EQ(bits_of(ft[q]), bits_of(want.ft)) << "contact " << q;
+      ASSERT_EQ(bits_of(ratio[q]), bits_of(want.ratio)) << "contact " << q;
+      ASSERT_EQ(bits_of(dashpot[q]), bits_of(want.dashpot)) << "contact " << q;
+      ASSERT_EQ(bits_of(friction[q]), bits_of(want.friction)) << "contact " << q;
+      ASSERT_EQ(slides[q], want.sliding) << "contact " << q;
+      sliding += want.sliding;
+      sticking += 1 - want.sliding;
+      fresh += s.on[q] < 0;
+      apart += want.ratio <= 0.0;
     }
-  }
+  });
   EXPECT_GE(builds, 1);
   // The sample covers what the law tells apart.
   EXPECT_GT(sliding, 1000);
@@ -246,7 +272,7 @@ struct DepthPairs {
   std::vector<std::int32_t> on;
 
   fluidbed::DepthKernelParticles particles() const {
-    return {x.data(),  y.data(),  z.data(),  vx.data(), vy.data(),    vz.data(),
+    return {x.data(),  y.data(),  z.data(),  vx.data(), vy.data(),   vz.data(),
             wx.data(), wy.data(), wz.data(), r.data(),  inv_i.data()};
   }
 };
@@ -322,13 +348,14 @@ DepthContact scalar_depth_contact(const DepthPairs& s, std::int32_t slot, const 
   const double R = s.r[i] + s.r[j];
   const double Lc = std::sqrt(fluidbed::dot(d, d));
   const Vec3 n = (1.0 / Lc) * d;
-  const Vec3 spin = s.r[i] * Vec3{s.wx[i], s.wy[i], s.wz[i]} + s.r[j] * Vec3{s.wx[j], s.wy[j], s.wz[j]};
+  const Vec3 spin =
+      s.r[i] * Vec3{s.wx[i], s.wy[i], s.wz[i]} + s.r[j] * Vec3{s.wx[j], s.wy[j], s.wz[j]};
   const Vec3 v_rel{s.vx[i] - s.vx[j], s.vy[i] - s.vy[j], s.vz[i] - s.vz[j]};
   const Vec3 vr = v_rel + fluidbed::cross(spin, n);
   double tau = dtau;
   if (fresh && incremental)
-    tau = std::min(
-        fluidbed::time_since_touch(d.x, d.y, -v_rel.x, -v_rel.y, R, Lc, d.z, -v_rel.z), dtau);
+    tau = std::min(fluidbed::time_since_touch(d.x, d.y, -v_rel.x, -v_rel.y, R, Lc, d.z, -v_rel.z),
+                   dtau);
   const double dn0 = fresh ? 0.0 : s.dn[k];
   Vec3 shear = fresh ? Vec3{} : Vec3{s.ds[k], s.ds_y[k], s.ds_z[k]};
   const double dn = incremental ? dn0 + fluidbed::dot(vr, n) * tau : R - Lc;
@@ -353,76 +380,53 @@ struct DepthOutputs {
   explicit DepthOutputs(std::size_t count) : v(16 * count, -1.0), sliding(count, -1), n(count) {}
   double* f(int field) { return &v[static_cast<std::size_t>(field) * n]; }
   fluidbed::DepthContactOut out() {
-    return {f(0), f(1), f(2),  f(3),  f(4),  f(5),  f(6),  f(7),  f(8),
+    return {f(0), f(1),  f(2),  f(3),  f(4),  f(5),  f(6),  f(7),          f(8),
             f(9), f(10), f(11), f(12), f(13), f(14), f(15), sliding.data()};
   }
 };
 
 }  // namespace
 
-// Which pairs touch in three dimensions, from every build, as the scalar pass decided.
-TEST(PairKernel, EveryBuildClassifiesDepthPairsAsTheScalarTest) {
-  const DepthPairs s = random_depth_pairs(4099, 3);
-  const auto n = static_cast<std::int64_t>(s.li.size());
-  const std::int64_t k0 = 5;
-  int touching = 0, apart = 0, coincident = 0;
-  for (SimdBuild b : fluidbed::kSimdBuilds) {
-    if (!fluidbed::cpu_runs(b)) continue;
-    SCOPED_TRACE(fluidbed::to_string(b));
-    std::vector<std::uint8_t> code(static_cast<std::size_t>(n - k0), 255);
-    fluidbed::classify_pairs_depth_on(b, s.particles(), s.li.data(), s.lj.data(), k0, n,
-                                      code.data());
-    for (std::int64_t k = k0; k < n; ++k) {
-      const std::int32_t i = s.li[k], j = s.lj[k];
-      const fluidbed::Vec3 d{s.x[j] - s.x[i], s.y[j] - s.y[i], s.z[j] - s.z[i]};
-      const double R = s.r[i] + s.r[j];
-      const double L2 = fluidbed::dot(d, d);
-      const int want = L2 <= 0.0 ? 2 : (L2 < R * R ? 1 : 0);
-      ASSERT_EQ(code[static_cast<std::size_t>(k - k0)], want) << "pair " << k;
-      touching += want == 1;
-      apart += want == 0;
-      coincident += want == 2;
-    }
-  }
-  EXPECT_GT(touching, 1000);
-  EXPECT_GT(apart, 100);
-  EXPECT_GT(coincident, 10);
-  std::vector<std::uint8_t> chosen(static_cast<std::size_t>(n - k0)), baseline(chosen.size());
-  fluidbed::classify_pairs_depth(s.particles(), s.li.data(), s.lj.data(), k0, n, chosen.data());
-  fluidbed::classify_pairs_depth_on(SimdBuild::baseline, s.particles(), s.li.data(), s.lj.data(),
-                                    k0, n, baseline.data());
-  EXPECT_EQ(chosen, baseline);
-}
-
-// The 3D contact kernel against contact_force_3d and rolling_torque_3d to the bit (history with
+// The 3D kernels: which pairs touch, then the contact law against contact_force_3d and
+// rolling_torque_3d to the bit (history with
 // the turned shear vector, force, lever, rolling torque, overlap ratio, losses, sliding), both
 // displacement forms, with and without rolling resistance, for the paper's law, van Wachem's
 // soft one and the corner cases (no tangential spring, no friction, no dashpots).
 TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
   const DepthPairs s = random_depth_pairs(4099, 4);
+  // First which pairs touch (slots from 5 on), as the scalar pass decided with dot(p, p).
+  const auto slots = static_cast<std::int64_t>(s.li.size());
+  const auto pk = s.particles();
+  expect_codes_of_every_build(
+      5, slots,
+      [&](SimdBuild b, std::uint8_t* code) {
+        fluidbed::classify_pairs_depth_on(b, pk, s.li.data(), s.lj.data(), 5, slots, code);
+      },
+      [&](std::uint8_t* code) {
+        fluidbed::classify_pairs_depth(pk, s.li.data(), s.lj.data(), 5, slots, code);
+      },
+      [&](std::int64_t k) {
+        const std::int32_t i = s.li[k], j = s.lj[k];
+        const fluidbed::Vec3 d{s.x[j] - s.x[i], s.y[j] - s.y[i], s.z[j] - s.z[i]};
+        const double L2 = fluidbed::dot(d, d), R = s.r[i] + s.r[j];
+        return L2 <= 0.0 ? 2 : (L2 < R * R ? 1 : 0);
+      });
   const std::vector<ContactParams> laws = {
-      {50000.0, 50000.0, 0.15, 0.15, 0.3, 0.0},        // the paper's
-      {624.0, 624.0, 0.00176, 0.00176, 0.3, 0.025},    // van Wachem's, rolling resistance
-      {50000.0, 0.0, 0.15, 0.15, 0.3, 0.1},            // no tangential spring
-      {50000.0, 50000.0, 0.15, 0.15, 0.0, 0.0},        // frictionless
-      {50000.0, 14285.7, 0.0, 0.0, 0.3, 0.4},          // undamped, strong rolling resistance
-      {1.0e6, 8.0e5, 2.5, 1.1, 0.45, 0.0},             // stiff
+      {50000.0, 50000.0, 0.15, 0.15, 0.3, 0.0},      // the paper's
+      {624.0, 624.0, 0.00176, 0.00176, 0.3, 0.025},  // van Wachem's, rolling resistance
+      {50000.0, 0.0, 0.15, 0.15, 0.3, 0.1},          // no tangential spring
+      {50000.0, 50000.0, 0.15, 0.15, 0.0, 0.0},      // frictionless
+      {50000.0, 14285.7, 0.0, 0.0, 0.3, 0.4},        // undamped, strong rolling resistance
+      {1.0e6, 8.0e5, 2.5, 1.1, 0.45, 0.0},           // stiff
   };
   const auto count = static_cast<std::int64_t>(s.on.size());
   const auto n = static_cast<std::size_t>(count);
-  const char* names[16] = {"dn", "ds", "ds_y", "ds_z", "fx", "fy", "fz", "lever_x", "lever_y",
-                           "lever_z", "roll_x", "roll_y", "roll_z", "ratio", "dashpot",
-                           "friction"};
-  int builds = 0, sliding = 0, sticking = 0, fresh = 0, apart = 0, rolling = 0, turned = 0;
-  for (SimdBuild b : fluidbed::kSimdBuilds) {
-    if (!fluidbed::cpu_runs(b)) continue;
-    ++builds;
-    SCOPED_TRACE(fluidbed::to_string(b));
-    for (std::size_t law = 0; law < laws.size(); ++law) {
-      for (const bool incremental : {true, false}) {
-        SCOPED_TRACE(::testing::Message()
-                     << "law " << law << (incremental ? ", incremental" : ", geometric"));
-        const double dtau = 1.5e-5 * static_cast<double>(law + 1);
+  const char* names[16] = {"dn",     "ds",      "ds_y",    "ds_z",    "fx",     "fy",
+                           "fz",     "lever_x", "lever_y", "lever_z", "roll_x", "roll_y",
+                           "roll_z", "ratio",   "dashpot", "friction"};
+  int sliding = 0, sticking = 0, fresh = 0, apart = 0, rolling = 0, turned = 0;
+  const int builds = for_every_build_law_and_form(
+      laws.size(), [&](SimdBuild b, std::size_t law, bool incremental, double dtau) {
         std::vector<double> hdn = s.dn, hds = s.ds, hdy = s.ds_y, hdz = s.ds_z;
         for (std::int32_t slot : s.on)
           if (slot < 0) {
@@ -430,11 +434,11 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
             hdn[k] = hds[k] = hdy[k] = hdz[k] = 0.0;
           }
         DepthOutputs got(n);
-        fluidbed::depth_contacts_on(b,
-                                    {s.particles(), s.li.data(), s.lj.data(), hdn.data(),
-                                     hds.data(), hdy.data(), hdz.data(), s.on.data(), count,
-                                     laws[law], incremental, dtau},
-                                    got.out());
+        fluidbed::depth_contacts_on(
+            b,
+            {s.particles(), s.li.data(), s.lj.data(), hdn.data(), hds.data(), hdy.data(),
+             hdz.data(), s.on.data(), count, laws[law], incremental, dtau},
+            got.out());
         for (std::size_t q = 0; q < n; ++q) {
           const DepthContact want = scalar_depth_contact(s, s.on[q], laws[law], incremental, dtau);
           for (int field = 0; field < 16; ++field)
@@ -448,9 +452,7 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
           rolling += want.v[10] != 0.0;
           turned += s.on[q] >= 0 && s.ds[static_cast<std::size_t>(s.on[q])] != 0.0;
         }
-      }
-    }
-  }
+      });
   EXPECT_GE(builds, 1);
   EXPECT_GT(sliding, 1000);
   EXPECT_GT(sticking, 1000);
