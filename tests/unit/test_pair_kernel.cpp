@@ -36,16 +36,28 @@ struct KernelPairs {
   }
 };
 
+// Pair q's radii (1 to 3 mm) and the distance of its centres: 0.2 to 1.3 times the sum of the
+// radii, or the sum to rounding for every 97th pair. direction() draws the direction between the
+// radii and the distance (the generators' order of draws).
+struct PairDraw {
+  double ri, rj, L;
+};
+template <class Direction>
+PairDraw draw_pair(std::mt19937_64& rng, std::size_t q, Direction direction) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double ri = 0.001 + 0.002 * u(rng), rj = 0.001 + 0.002 * u(rng);
+  direction();
+  const double R = ri + rj, L = R * (0.2 + 1.1 * u(rng));
+  return {ri, rj, q % 97 == 5 ? R : L};
+}
+
 KernelPairs random_pairs(std::size_t n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   KernelPairs s;
   for (std::size_t q = 0; q < n; ++q) {
-    const double ri = 0.001 + 0.002 * u(rng), rj = 0.001 + 0.002 * u(rng);
-    const double R = ri + rj;
-    const double a = 2.0 * std::numbers::pi * u(rng);
-    double L = R * (0.2 + 1.1 * u(rng));
-    if (q % 97 == 5) L = R;  // at the sum of the radii, to rounding
+    double a = 0.0;
+    const auto [ri, rj, L] = draw_pair(rng, q, [&] { a = 2.0 * std::numbers::pi * u(rng); });
     const double x0 = 0.15 * u(rng), y0 = 0.9 * u(rng);
     const double x1 = q % 89 == 7 ? x0 : x0 + L * std::cos(a);  // coincident centres
     const double y1 = q % 89 == 7 ? y0 : y0 + L * std::sin(a);
@@ -282,13 +294,14 @@ DepthPairs random_depth_pairs(std::size_t n, std::uint64_t seed) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   DepthPairs s;
   for (std::size_t q = 0; q < n; ++q) {
-    const double ri = 0.001 + 0.002 * u(rng), rj = 0.001 + 0.002 * u(rng);
-    const double R = ri + rj;
-    const double a = 2.0 * std::numbers::pi * u(rng), c = 2.0 * u(rng) - 1.0;
-    const double sc = std::sqrt(1.0 - c * c);
-    const double ex = sc * std::cos(a), ey = sc * std::sin(a), ez = c;  // a random direction
-    double L = R * (0.2 + 1.1 * u(rng));
-    if (q % 97 == 5) L = R;
+    double ex = 0.0, ey = 0.0, ez = 0.0;  // a random direction
+    const auto [ri, rj, L] = draw_pair(rng, q, [&] {
+      const double a = 2.0 * std::numbers::pi * u(rng), c = 2.0 * u(rng) - 1.0;
+      const double sc = std::sqrt(1.0 - c * c);
+      ex = sc * std::cos(a);
+      ey = sc * std::sin(a);
+      ez = c;
+    });
     const bool coincident = q % 89 == 7;
     const double x0 = 0.15 * u(rng), y0 = 0.9 * u(rng), z0 = 0.008 * u(rng);
     s.x.insert(s.x.end(), {x0, coincident ? x0 : x0 + L * ex});
