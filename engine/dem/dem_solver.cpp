@@ -123,7 +123,7 @@ void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
   const PairContactOut out{cs.dn.data() + k0,    cs.ds.data() + k0,      cs.fx.data() + k0,
                            cs.fy.data() + k0,    cs.ft.data() + k0,      cs.ratio.data() + k0,
                            cs.dashpot.data() + k0, cs.friction.data() + k0, cs.sliding.data() + k0};
-  pair_contacts(pk, li, lj, ldn, lds, on, count, params_, Incremental, dtau, out);
+  pair_contacts({pk, li, lj, ldn, lds, on, count, params_, Incremental, dtau}, out);
   // Rolling resistance (contact.rolling_friction): a torque per contact, and its loss as friction.
   const bool rolling = params_.mu_r > 0.0;
   double* roll = cs.roll.data() + k0;

@@ -62,7 +62,7 @@ void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremen
                             cs.ft.data() + k0,       cs.roll_x.data() + k0, cs.roll_y.data() + k0,
                             cs.roll.data() + k0,     cs.ratio.data() + k0,  cs.dashpot.data() + k0,
                             cs.friction.data() + k0, cs.sliding.data() + k0};
-  depth_contacts({pk, li, lj, ldn, lds, lds_y, lds_z, on, count, params_, incremental, dtau}, out);
+  depth_contacts({pk, li, lj, ldn, lds, on, count, params_, incremental, dtau, lds_y, lds_z}, out);
   int sliding = 0;
   std::vector<Push>& pass = passed_[static_cast<std::size_t>(t)];
   std::vector<PushDepth>& pass_depth = passed_depth_[static_cast<std::size_t>(t)];

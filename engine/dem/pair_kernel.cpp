@@ -22,6 +22,26 @@ void call_build(SimdBuild b, Avx512f avx512f, Avx2 avx2, Baseline baseline, cons
   }
 }
 
+// A contact kernel's loops Either(in, out) built for one instruction set each, and the build b
+// of them called.
+template <auto Either, class In, class Out>
+FLUIDBED_SIMD_AVX512F void build_avx512f(const In& in, const Out& out) {
+  Either(in, out);
+}
+template <auto Either, class In, class Out>
+FLUIDBED_SIMD_AVX2 void build_avx2(const In& in, const Out& out) {
+  Either(in, out);
+}
+template <auto Either, class In, class Out>
+void build_baseline(const In& in, const Out& out) {
+  Either(in, out);
+}
+template <auto Either, class In, class Out>
+void call_contacts_build(SimdBuild b, const In& in, const Out& out) {
+  call_build(b, build_avx512f<Either, In, Out>, build_avx2<Either, In, Out>,
+             build_baseline<Either, In, Out>, in, out);
+}
+
 // The loops, inlined into each entry point below: the clones the loader chooses between
 // (FLUIDBED_SIMD_CLONES) and the builds for one instruction set each (classify_pairs_on,
 // pair_contacts_on), so that all are the same source compiled in this file with its flags.
@@ -45,13 +65,16 @@ __attribute__((always_inline)) inline void classify_loop(const PairKernelParticl
 // One loop per displacement form (a choice inside the loop would keep the compiler from
 // vectorising it).
 template <bool Incremental>
-__attribute__((always_inline)) inline void contacts_loop(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj, const double* ldn,
-    const double* lds, const std::int32_t* on, std::int64_t count, const ContactParams& params,
-    double dtau, const PairContactOut& out) {
+__attribute__((always_inline)) inline void contacts_loop(const PairContactIn& in,
+                                                         const PairContactOut& out) {
+  const PairKernelParticles& p = in.p;
   const double *x = p.x, *y = p.y, *vx = p.vx, *vy = p.vy, *w = p.w, *r = p.r;
-  const double kn = params.kn, kt = params.kt, eta_n = params.eta_n, eta_t = params.eta_t,
-               mu = params.mu;
+  const std::int32_t *li = in.li, *lj = in.lj, *on = in.on;
+  const double *ldn = in.dn, *lds = in.ds;
+  const double kn = in.params.kn, kt = in.params.kt, eta_n = in.params.eta_n,
+               eta_t = in.params.eta_t, mu = in.params.mu;
+  const double dtau = in.dtau;
+  const std::int64_t count = in.count;
 #pragma omp simd
   for (std::int64_t q = 0; q < count; ++q) {
     const std::int32_t s = on[q];
@@ -102,31 +125,21 @@ __attribute__((always_inline)) inline void contacts_loop(
 }
 
 // Both forms, the choice outside the loops (the builds for one instruction set each).
-__attribute__((always_inline)) inline void contacts_either(
-    const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj, const double* ldn,
-    const double* lds, const std::int32_t* on, std::int64_t count, const ContactParams& params,
-    bool incremental, double dtau, const PairContactOut& out) {
-  if (incremental) {
-    contacts_loop<true>(p, li, lj, ldn, lds, on, count, params, dtau, out);
+__attribute__((always_inline)) inline void contacts_either(const PairContactIn& in,
+                                                           const PairContactOut& out) {
+  if (in.incremental) {
+    contacts_loop<true>(in, out);
   } else {
-    contacts_loop<false>(p, li, lj, ldn, lds, on, count, params, dtau, out);
+    contacts_loop<false>(in, out);
   }
 }
 
-FLUIDBED_SIMD_CLONES void contacts_incremental(const PairKernelParticles& p, const std::int32_t* li,
-                                               const std::int32_t* lj, const double* ldn,
-                                               const double* lds, const std::int32_t* on,
-                                               std::int64_t count, const ContactParams& params,
-                                               double dtau, const PairContactOut& out) {
-  contacts_loop<true>(p, li, lj, ldn, lds, on, count, params, dtau, out);
+FLUIDBED_SIMD_CLONES void contacts_incremental(const PairContactIn& in, const PairContactOut& out) {
+  contacts_loop<true>(in, out);
 }
 
-FLUIDBED_SIMD_CLONES void contacts_geometric(const PairKernelParticles& p, const std::int32_t* li,
-                                             const std::int32_t* lj, const double* ldn,
-                                             const double* lds, const std::int32_t* on,
-                                             std::int64_t count, const ContactParams& params,
-                                             double dtau, const PairContactOut& out) {
-  contacts_loop<false>(p, li, lj, ldn, lds, on, count, params, dtau, out);
+FLUIDBED_SIMD_CLONES void contacts_geometric(const PairContactIn& in, const PairContactOut& out) {
+  contacts_loop<false>(in, out);
 }
 
 // Each instruction set's own build.
@@ -143,27 +156,6 @@ FLUIDBED_SIMD_AVX2 void classify_avx2(const PairKernelParticles& p, const std::i
 void classify_baseline(const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
                        std::int64_t k0, std::int64_t k1, std::uint8_t* code) {
   classify_loop(p, li, lj, k0, k1, code);
-}
-FLUIDBED_SIMD_AVX512F void contacts_avx512f(const PairKernelParticles& p, const std::int32_t* li,
-                                            const std::int32_t* lj, const double* ldn,
-                                            const double* lds, const std::int32_t* on,
-                                            std::int64_t count, const ContactParams& params,
-                                            bool incremental, double dtau,
-                                            const PairContactOut& out) {
-  contacts_either(p, li, lj, ldn, lds, on, count, params, incremental, dtau, out);
-}
-FLUIDBED_SIMD_AVX2 void contacts_avx2(const PairKernelParticles& p, const std::int32_t* li,
-                                      const std::int32_t* lj, const double* ldn, const double* lds,
-                                      const std::int32_t* on, std::int64_t count,
-                                      const ContactParams& params, bool incremental, double dtau,
-                                      const PairContactOut& out) {
-  contacts_either(p, li, lj, ldn, lds, on, count, params, incremental, dtau, out);
-}
-void contacts_baseline(const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-                       const double* ldn, const double* lds, const std::int32_t* on,
-                       std::int64_t count, const ContactParams& params, bool incremental,
-                       double dtau, const PairContactOut& out) {
-  contacts_either(p, li, lj, ldn, lds, on, count, params, incremental, dtau, out);
 }
 
 // The thick slab's classify: the distance in 3D, dot(p, p) in its order.
@@ -324,15 +316,6 @@ void classify_depth_baseline(const DepthKernelParticles& p, const std::int32_t* 
                              std::uint8_t* code) {
   classify_depth_loop(p, li, lj, k0, k1, code);
 }
-FLUIDBED_SIMD_AVX512F void depth_avx512f(const DepthContactIn& in, const DepthContactOut& out) {
-  depth_either(in, out);
-}
-FLUIDBED_SIMD_AVX2 void depth_avx2(const DepthContactIn& in, const DepthContactOut& out) {
-  depth_either(in, out);
-}
-void depth_baseline(const DepthContactIn& in, const DepthContactOut& out) {
-  depth_either(in, out);
-}
 
 }  // namespace
 
@@ -355,7 +338,7 @@ void classify_pairs_depth_on(SimdBuild b, const DepthKernelParticles& p, const s
 }
 
 void depth_contacts_on(SimdBuild b, const DepthContactIn& in, const DepthContactOut& out) {
-  call_build(b, depth_avx512f, depth_avx2, depth_baseline, in, out);
+  call_contacts_build<depth_either>(b, in, out);
 }
 
 FLUIDBED_SIMD_CLONES void classify_pairs(const PairKernelParticles& p, const std::int32_t* li,
@@ -364,14 +347,11 @@ FLUIDBED_SIMD_CLONES void classify_pairs(const PairKernelParticles& p, const std
   classify_loop(p, li, lj, k0, k1, code);
 }
 
-void pair_contacts(const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-                   const double* dn, const double* ds, const std::int32_t* on, std::int64_t count,
-                   const ContactParams& params, bool incremental, double dtau,
-                   const PairContactOut& out) {
-  if (incremental) {
-    contacts_incremental(p, li, lj, dn, ds, on, count, params, dtau, out);
+void pair_contacts(const PairContactIn& in, const PairContactOut& out) {
+  if (in.incremental) {
+    contacts_incremental(in, out);
   } else {
-    contacts_geometric(p, li, lj, dn, ds, on, count, params, dtau, out);
+    contacts_geometric(in, out);
   }
 }
 
@@ -381,12 +361,8 @@ void classify_pairs_on(SimdBuild b, const PairKernelParticles& p, const std::int
   call_build(b, classify_avx512f, classify_avx2, classify_baseline, p, li, lj, k0, k1, code);
 }
 
-void pair_contacts_on(SimdBuild b, const PairKernelParticles& p, const std::int32_t* li,
-                      const std::int32_t* lj, const double* dn, const double* ds,
-                      const std::int32_t* on, std::int64_t count, const ContactParams& params,
-                      bool incremental, double dtau, const PairContactOut& out) {
-  call_build(b, contacts_avx512f, contacts_avx2, contacts_baseline, p, li, lj, dn, ds, on, count,
-             params, incremental, dtau, out);
+void pair_contacts_on(SimdBuild b, const PairContactIn& in, const PairContactOut& out) {
+  call_contacts_build<contacts_either>(b, in, out);
 }
 
 }  // namespace fluidbed

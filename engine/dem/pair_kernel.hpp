@@ -27,14 +27,27 @@ void classify_pairs(const PairKernelParticles& p, const std::int32_t* li, const 
 // contact: the caller clears it); writes per contact (index q): the new history, the force on li[k]
 // (x, y and the tangential component), the overlap ratio, the energy lost over the step of dtau
 // and whether it slides.
+// The touching slots and what the law needs besides the particles (the monolayer's or a thick
+// slab's arrays): the slots' pairs and history (a thick slab's shear vector is ds, ds_y, ds_z), the
+// law, the displacement form and the step.
+template <class KernelParticles>
+struct ContactIn {
+  KernelParticles p;
+  const std::int32_t *li, *lj;
+  const double *dn, *ds;
+  const std::int32_t* on;
+  std::int64_t count;
+  ContactParams params;  // a thick slab: mu_r > 0 adds rolling resistance
+  bool incremental;
+  double dtau;  // s
+  const double *ds_y = nullptr, *ds_z = nullptr;
+};
+using PairContactIn = ContactIn<PairKernelParticles>;
 struct PairContactOut {
   double *dn, *ds, *fx, *fy, *ft, *ratio, *dashpot, *friction;
   std::int32_t* sliding;
 };
-void pair_contacts(const PairKernelParticles& p, const std::int32_t* li, const std::int32_t* lj,
-                   const double* dn, const double* ds, const std::int32_t* on, std::int64_t count,
-                   const ContactParams& params, bool incremental, double dtau,
-                   const PairContactOut& out);
+void pair_contacts(const PairContactIn& in, const PairContactOut& out);
 
 // The same two kernels as one build each (core/simd.hpp: AVX-512, AVX2 or plain x86-64), for
 // the tests that pin every build to the scalar law, not only the one this CPU takes. The CPU must
@@ -42,10 +55,7 @@ void pair_contacts(const PairKernelParticles& p, const std::int32_t* li, const s
 void classify_pairs_on(SimdBuild b, const PairKernelParticles& p, const std::int32_t* li,
                        const std::int32_t* lj, std::int64_t k0, std::int64_t k1,
                        std::uint8_t* code);
-void pair_contacts_on(SimdBuild b, const PairKernelParticles& p, const std::int32_t* li,
-                      const std::int32_t* lj, const double* dn, const double* ds,
-                      const std::int32_t* on, std::int64_t count, const ContactParams& params,
-                      bool incremental, double dtau, const PairContactOut& out);
+void pair_contacts_on(SimdBuild b, const PairContactIn& in, const PairContactOut& out);
 
 // A thick slab's kernels (dem/depth_passes.cpp): the same two steps in three dimensions, the law
 // of contact_force_3d with the rolling resistance of rolling_torque_3d, the operations in their
@@ -60,18 +70,8 @@ void classify_pairs_depth(const DepthKernelParticles& p, const std::int32_t* li,
                           std::uint8_t* code);
 
 // The touching slots on[0 .. count) (k, or ~k for a fresh contact, whose history the caller
-// clears) and what the law needs besides the particles: the slots' pairs and history (dn and the
-// shear vector ds, ds_y, ds_z), the law, the displacement form and the step.
-struct DepthContactIn {
-  DepthKernelParticles p;
-  const std::int32_t *li, *lj;
-  const double *dn, *ds, *ds_y, *ds_z;
-  const std::int32_t* on;
-  std::int64_t count;
-  ContactParams params;  // mu_r > 0: rolling resistance
-  bool incremental;
-  double dtau;  // s
-};
+// clears), as for pair_contacts, with the shear vector's ds_y and ds_z.
+using DepthContactIn = ContactIn<DepthKernelParticles>;
 // Per contact q: the new history, the force on li[k], the lever n x F_t (the torque on a sphere
 // is its radius times it), the rolling torque on li[k] (zero without rolling resistance), the
 // overlap ratio, the energy lost over the step (friction includes the rolling resistance's) and

@@ -212,38 +212,40 @@ TEST(PairKernel, EveryBuildGivesTheScalarContactLawToTheBit) {
   const auto count = static_cast<std::int64_t>(s.on.size());
   const auto n = static_cast<std::size_t>(count);
   int sliding = 0, sticking = 0, fresh = 0, apart = 0;
-  const int builds = for_every_build_law_and_form(laws.size(), [&](SimdBuild b, std::size_t law,
-                                                                   bool incremental, double dtau) {
-    // History as the caller hands it: cleared for a new contact.
-    std::vector<double> hdn = s.dn, hds = s.ds;
-    for (std::int32_t slot : s.on)
-      if (slot < 0)
-        hdn[static_cast<std::size_t>(~slot)] = hds[static_cast<std::size_t>(~slot)] = 0.0;
-    std::vector<double> dn(n, -1.0), ds(n, -1.0), fx(n, -1.0), fy(n, -1.0), ft(n, -1.0),
-        ratio(n, -1.0), dashpot(n, -1.0), friction(n, -1.0);
-    std::vector<std::int32_t> slides(n, -1);
-    const fluidbed::PairContactOut out{dn.data(),      ds.data(),       fx.data(),
-                                       fy.data(),      ft.data(),       ratio.data(),
-                                       dashpot.data(), friction.data(), slides.data()};
-    fluidbed::pair_contacts_on(b, s.particles(), s.li.data(), s.lj.data(), hdn.data(), hds.data(),
-                               s.on.data(), count, laws[law], incremental, dtau, out);
-    for (std::size_t q = 0; q < n; ++q) {
-      const KernelContact want = scalar_contact(s, s.on[q], laws[law], incremental, dtau);
-      ASSERT_EQ(bits_of(dn[q]), bits_of(want.dn)) << "contact " << q;
-      ASSERT_EQ(bits_of(ds[q]), bits_of(want.ds)) << "contact " << q;
-      ASSERT_EQ(bits_of(fx[q]), bits_of(want.fx)) << "contact " << q;
-      ASSERT_EQ(bits_of(fy[q]), bits_of(want.fy)) << "contact " << q;
-      ASSERT_EQ(bits_of(ft[q]), bits_of(want.ft)) << "contact " << q;
-      ASSERT_EQ(bits_of(ratio[q]), bits_of(want.ratio)) << "contact " << q;
-      ASSERT_EQ(bits_of(dashpot[q]), bits_of(want.dashpot)) << "contact " << q;
-      ASSERT_EQ(bits_of(friction[q]), bits_of(want.friction)) << "contact " << q;
-      ASSERT_EQ(slides[q], want.sliding) << "contact " << q;
-      sliding += want.sliding;
-      sticking += 1 - want.sliding;
-      fresh += s.on[q] < 0;
-      apart += want.ratio <= 0.0;
-    }
-  });
+  const int builds = for_every_build_law_and_form(
+      laws.size(), [&](SimdBuild b, std::size_t law, bool incremental, double dtau) {
+        // History as the caller hands it: cleared for a new contact.
+        std::vector<double> hdn = s.dn, hds = s.ds;
+        for (std::int32_t slot : s.on)
+          if (slot < 0)
+            hdn[static_cast<std::size_t>(~slot)] = hds[static_cast<std::size_t>(~slot)] = 0.0;
+        std::vector<double> dn(n, -1.0), ds(n, -1.0), fx(n, -1.0), fy(n, -1.0), ft(n, -1.0),
+            ratio(n, -1.0), dashpot(n, -1.0), friction(n, -1.0);
+        std::vector<std::int32_t> slides(n, -1);
+        const fluidbed::PairContactOut out{dn.data(),      ds.data(),       fx.data(),
+                                           fy.data(),      ft.data(),       ratio.data(),
+                                           dashpot.data(), friction.data(), slides.data()};
+        fluidbed::pair_contacts_on(b,
+                                   {s.particles(), s.li.data(), s.lj.data(), hdn.data(), hds.data(),
+                                    s.on.data(), count, laws[law], incremental, dtau},
+                                   out);
+        for (std::size_t q = 0; q < n; ++q) {
+          const KernelContact want = scalar_contact(s, s.on[q], laws[law], incremental, dtau);
+          ASSERT_EQ(bits_of(dn[q]), bits_of(want.dn)) << "contact " << q;
+          ASSERT_EQ(bits_of(ds[q]), bits_of(want.ds)) << "contact " << q;
+          ASSERT_EQ(bits_of(fx[q]), bits_of(want.fx)) << "contact " << q;
+          ASSERT_EQ(bits_of(fy[q]), bits_of(want.fy)) << "contact " << q;
+          ASSERT_EQ(bits_of(ft[q]), bits_of(want.ft)) << "contact " << q;
+          ASSERT_EQ(bits_of(ratio[q]), bits_of(want.ratio)) << "contact " << q;
+          ASSERT_EQ(bits_of(dashpot[q]), bits_of(want.dashpot)) << "contact " << q;
+          ASSERT_EQ(bits_of(friction[q]), bits_of(want.friction)) << "contact " << q;
+          ASSERT_EQ(slides[q], want.sliding) << "contact " << q;
+          sliding += want.sliding;
+          sticking += 1 - want.sliding;
+          fresh += s.on[q] < 0;
+          apart += want.ratio <= 0.0;
+        }
+      });
   EXPECT_GE(builds, 1);
   // The sample covers what the law tells apart.
   EXPECT_GT(sliding, 1000);
@@ -259,11 +261,11 @@ TEST(PairKernel, EveryBuildGivesTheScalarContactLawToTheBit) {
       return fluidbed::PairContactOut{&v[0],     &v[n],     &v[2 * n], &v[3 * n], &v[4 * n],
                                       &v[5 * n], &v[6 * n], &v[7 * n], sl.data()};
     };
-    fluidbed::pair_contacts(s.particles(), s.li.data(), s.lj.data(), s.dn.data(), s.ds.data(),
-                            s.on.data(), count, laws[0], incremental, 1.5e-5, out_in(a, sa));
-    fluidbed::pair_contacts_on(SimdBuild::baseline, s.particles(), s.li.data(), s.lj.data(),
-                               s.dn.data(), s.ds.data(), s.on.data(), count, laws[0], incremental,
-                               1.5e-5, out_in(c, sc));
+    const fluidbed::PairContactIn in{s.particles(), s.li.data(), s.lj.data(), s.dn.data(),
+                                     s.ds.data(),   s.on.data(), count,       laws[0],
+                                     incremental,   1.5e-5};
+    fluidbed::pair_contacts(in, out_in(a, sa));
+    fluidbed::pair_contacts_on(SimdBuild::baseline, in, out_in(c, sc));
     for (std::size_t k = 0; k < 8 * n; ++k)
       ASSERT_EQ(bits_of(a[k]), bits_of(c[k])) << "value " << k;
     EXPECT_EQ(sa, sc);
@@ -449,8 +451,8 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
         DepthOutputs got(n);
         fluidbed::depth_contacts_on(
             b,
-            {s.particles(), s.li.data(), s.lj.data(), hdn.data(), hds.data(), hdy.data(),
-             hdz.data(), s.on.data(), count, laws[law], incremental, dtau},
+            {s.particles(), s.li.data(), s.lj.data(), hdn.data(), hds.data(), s.on.data(), count,
+             laws[law], incremental, dtau, hdy.data(), hdz.data()},
             got.out());
         for (std::size_t q = 0; q < n; ++q) {
           const DepthContact want = scalar_depth_contact(s, s.on[q], laws[law], incremental, dtau);
@@ -477,9 +479,9 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
   // The build the loader chose gives the baseline's bits.
   for (const bool incremental : {true, false}) {
     DepthOutputs a(n), c(n);
-    const fluidbed::DepthContactIn in{s.particles(), s.li.data(),   s.lj.data(),   s.dn.data(),
-                                      s.ds.data(),   s.ds_y.data(), s.ds_z.data(), s.on.data(),
-                                      count,         laws[1],       incremental,   2e-5};
+    const fluidbed::DepthContactIn in{s.particles(), s.li.data(), s.lj.data(),   s.dn.data(),
+                                      s.ds.data(),   s.on.data(), count,         laws[1],
+                                      incremental,   2e-5,        s.ds_y.data(), s.ds_z.data()};
     fluidbed::depth_contacts(in, a.out());
     fluidbed::depth_contacts_on(SimdBuild::baseline, in, c.out());
     for (std::size_t k = 0; k < a.v.size(); ++k)
