@@ -147,6 +147,16 @@ inline ContactForce3 contact_force_3d(const ContactParams& p, double dn, Vec3& s
   return f;
 }
 
+// Rolling resistance in three dimensions (rolling_torque along the relative spin): the torque on
+// i against w_rel = w_i - w_j (the spin at a wall), limited as rolling_torque is.
+inline Vec3 rolling_torque_3d(double mu_r, double r_roll, double fn_spring, const Vec3& w_rel,
+                              double inv_inertia_sum, double h) {
+  const double spin = std::sqrt(dot(w_rel, w_rel));
+  if (spin <= 0.0) return {};
+  const double m = rolling_torque(mu_r, r_roll, fn_spring, spin, inv_inertia_sum, h);  // <= 0
+  return (m / spin) * w_rel;
+}
+
 // Eq 13: the time since two spheres first touched, found by moving j back from i along the
 // relative velocity until their centres are R apart. p = x_j - x_i, w = v_j - v_i, L = |p| < R.
 // Returns 0 when the spheres have no relative velocity (they were placed touching).

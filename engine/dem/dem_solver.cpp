@@ -115,26 +115,15 @@ void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
   // first time, whose history starts from zero (scratch: each thread writes its own range).
   // Coincident centres are no contact but an overlap of 1 (rare: a branch).
   std::int32_t* on = L.active.data() + k0;
-  std::int64_t count = 0;
   double max_ratio = 0.0;
   std::int64_t worst = -1;
-  for (std::int64_t k = k0; k < k1; ++k) {
-    const int c = code[k - k0];
-    const int touching = c & 1, fresh = touching & (touch[k] ^ 1);
-    on[count] = static_cast<std::int32_t>(k) ^ -fresh;
-    count += touching;
-    touch[k] = static_cast<std::uint8_t>(touching);
-    if (fresh) ldn[k] = lds[k] = 0.0;  // rare: the branch is well predicted
-    if ((c >> 1) && 1.0 > max_ratio) {
-      max_ratio = 1.0;
-      worst = k;
-    }
-  }
+  const std::int64_t count = list_touching(code, touch, k0, k1, on, max_ratio, worst,
+                                           [&](std::int64_t k) { ldn[k] = lds[k] = 0.0; });
   ContactScratch& cs = L.contact_scratch;
   const PairContactOut out{cs.dn.data() + k0,    cs.ds.data() + k0,      cs.fx.data() + k0,
                            cs.fy.data() + k0,    cs.ft.data() + k0,      cs.ratio.data() + k0,
                            cs.dashpot.data() + k0, cs.friction.data() + k0, cs.sliding.data() + k0};
-  pair_contacts(pk, li, lj, ldn, lds, on, count, params_, Incremental, dtau, out);
+  pair_contacts({pk, li, lj, ldn, lds, on, count, params_, Incremental, dtau}, out);
   // Rolling resistance (contact.rolling_friction): a torque per contact, and its loss as friction.
   const bool rolling = params_.mu_r > 0.0;
   double* roll = cs.roll.data() + k0;
@@ -143,7 +132,7 @@ void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
     const double* w = a.w;
     const double* inv_i = a.inv_inertia;
     for (std::int64_t q = 0; q < count; ++q) {
-      const std::int32_t k = on[q] ^ (on[q] >> 31);
+      const std::int32_t k = listed_slot(on[q]);
       const std::int32_t i = li[k], j = lj[k];
       const double w_rel = w[i] - w[j];
       roll[q] = rolling_torque(params_.mu_r, r[i] * r[j] / (r[i] + r[j]),
@@ -158,7 +147,7 @@ void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
   const auto end = static_cast<std::int32_t>(e);
   BlockLedger ledger(block_ledger_.data());  // by the pairs' first particles: they come in i order
   for (std::int64_t q = 0; q < count; ++q) {
-    const std::int32_t k = on[q] ^ (on[q] >> 31);
+    const std::int32_t k = listed_slot(on[q]);
     ldn[k] = out.dn[q];
     lds[k] = out.ds[q];
     const double ratio = out.ratio[q];
@@ -228,7 +217,7 @@ bool DemSolver::particle_pass(int t, std::size_t b, std::size_t e, double dtau, 
     const double* cft = cs.ft.data() + acc.k0;
     const double* crt = cs.ratio.data() + acc.k0;
     for (int q = 0; q < acc.contacts; ++q) {
-      const std::int32_t k = on[q] ^ (on[q] >> 31);
+      const std::int32_t k = listed_slot(on[q]);
       const std::int32_t i = li[k], j = lj[k];
       fx[i] += cfx[q];
       fy[i] += cfy[q];
@@ -243,7 +232,7 @@ bool DemSolver::particle_pass(int t, std::size_t b, std::size_t e, double dtau, 
           if (c.j >= lo && c.j < hi) tq[c.j] -= c.roll;
       const double* roll = cs.roll.data() + acc.k0;
       for (int q = 0; q < acc.contacts; ++q) {
-        const std::int32_t k = on[q] ^ (on[q] >> 31);
+        const std::int32_t k = listed_slot(on[q]);
         tq[li[k]] += roll[q];
         if (lj[k] < hi) tq[lj[k]] -= roll[q];
       }

@@ -1,28 +1,20 @@
 // The particle step's two force passes for a thick slab, where particles move in three
 // dimensions: the same structure as the monolayer's (DemSolver::pair_pass, particle_pass, with
 // the same order of summation, so that results are the same bits for any thread count), with the
-// contact law of contact_force_3d and the front and back walls as real contacts. Scalar loops:
-// the monolayer's vectorised kernels are left as they are.
+// contact law of contact_force_3d and the front and back walls as real contacts. The pair pass
+// runs the law several pairs at a time (dem/pair_kernel.hpp: depth_contacts); the walls use the
+// scalar law.
 #include <algorithm>
 #include <cmath>
 
 #include "core/threads.hpp"
 #include "dem/block_ledger.hpp"
 #include "dem/dem_solver.hpp"
+#include "dem/pair_kernel.hpp"
 
 namespace fluidbed {
 
 namespace {
-
-// Rolling resistance in three dimensions (rolling_torque along the relative spin): the torque on
-// i against w_rel = w_i - w_j, limited as rolling_torque is.
-Vec3 rolling_torque_3d(double mu_r, double r_roll, double fn_spring, const Vec3& w_rel,
-                       double inv_inertia_sum, double h) {
-  const double spin = std::sqrt(dot(w_rel, w_rel));
-  if (spin <= 0.0) return {};
-  const double m = rolling_torque(mu_r, r_roll, fn_spring, spin, inv_inertia_sum, h);  // <= 0
-  return (m / spin) * w_rel;
-}
 
 // One step of a contact whose history is entry k of h (the pair slots or the wall history: dn,
 // ds, ds_y, ds_z): contact_force_3d from the history's shear vector, the new history written back.
@@ -40,22 +32,37 @@ ContactForce3 advance_contact(History& h, std::size_t k, const ContactParams& pa
 
 }  // namespace
 
+// As pair_pass: which pairs touch, the touching slots listed, the law over those
+// (dem/pair_kernel.hpp: depth_contacts, several pairs at a time) into the compact scratch, then in
+// slot order their history back to the slots, the diagnostics, the ledger and the contacts passed
+// to later threads.
 void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremental,
                                 StepPartial& acc) {
   const Particles& P = state_.particles;
-  const double *x = P.x.data(), *y = P.y.data(), *z = P.z.data();
-  const double *vx = P.vx.data(), *vy = P.vy.data(), *vz = P.vz.data();
-  const double *wx = P.wx.data(), *wy = P.wy.data(), *wz = P.w.data();
-  const double *r = P.radius.data(), *inv_i = P.inv_inertia.data();
+  const DepthKernelParticles pk{P.x.data(),  P.y.data(),      P.z.data(),          P.vx.data(),
+                                P.vy.data(), P.vz.data(),     P.wx.data(),         P.wy.data(),
+                                P.w.data(),  P.radius.data(), P.inv_inertia.data()};
   NeighbourList& L = list_;
   PairSlots& S = L.slots();
   const std::int64_t k0 = acc.k0, k1 = S.first_begin[e];
+  const std::int32_t *li = S.i.data(), *lj = S.j.data();
+  double *ldn = S.dn.data(), *lds = S.ds.data(), *lds_y = S.ds_y.data(), *lds_z = S.ds_z.data();
+  std::uint8_t* code = L.code.data() + k0;
+  classify_pairs_depth(pk, li, lj, k0, k1, code);
   std::int32_t* on = L.active.data() + k0;
-  ContactScratch& cs = L.contact_scratch;
-  const bool rolling = params_.mu_r > 0.0;
-  std::int64_t count = 0;
   double max_ratio = 0.0;
   std::int64_t worst = -1;
+  const std::int64_t count =
+      list_touching(code, S.touching.data(), k0, k1, on, max_ratio, worst,
+                    [&](std::int64_t k) { ldn[k] = lds[k] = lds_y[k] = lds_z[k] = 0.0; });
+  ContactScratch& cs = L.contact_scratch;
+  const DepthContactOut out{cs.dn.data() + k0,       cs.ds.data() + k0,     cs.ds_y.data() + k0,
+                            cs.ds_z.data() + k0,     cs.fx.data() + k0,     cs.fy.data() + k0,
+                            cs.fz.data() + k0,       cs.ftx.data() + k0,    cs.fty.data() + k0,
+                            cs.ft.data() + k0,       cs.roll_x.data() + k0, cs.roll_y.data() + k0,
+                            cs.roll.data() + k0,     cs.ratio.data() + k0,  cs.dashpot.data() + k0,
+                            cs.friction.data() + k0, cs.sliding.data() + k0};
+  depth_contacts({pk, li, lj, ldn, lds, on, count, params_, incremental, dtau, lds_y, lds_z}, out);
   int sliding = 0;
   std::vector<Push>& pass = passed_[static_cast<std::size_t>(t)];
   std::vector<PushDepth>& pass_depth = passed_depth_[static_cast<std::size_t>(t)];
@@ -63,64 +70,22 @@ void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremen
   pass_depth.clear();
   const auto end = static_cast<std::int32_t>(e);
   BlockLedger ledger(block_ledger_.data());  // by the pairs' first particles: they come in i order
-  for (std::int64_t k = k0; k < k1; ++k) {
-    const std::int32_t i = S.i[k], j = S.j[k];
-    const Vec3 p{x[j] - x[i], y[j] - y[i], z[j] - z[i]};
-    const double R = r[i] + r[j];
-    const double L2 = dot(p, p);
-    if (L2 <= 0.0) {  // coincident centres: no contact, but an overlap of 1
-      if (1.0 > max_ratio) {
-        max_ratio = 1.0;
-        worst = k;
-      }
-      S.touching[k] = 0;
-      continue;
-    }
-    if (!(L2 < R * R)) {
-      S.touching[k] = 0;
-      continue;
-    }
-    const bool fresh = !S.touching[k];
-    if (fresh) S.dn[k] = S.ds[k] = S.ds_y[k] = S.ds_z[k] = 0.0;
-    S.touching[k] = 1;
-    const double Lc = std::sqrt(L2);
-    const Vec3 n = (1.0 / Lc) * p;
-    const Vec3 spin = r[i] * Vec3{wx[i], wy[i], wz[i]} + r[j] * Vec3{wx[j], wy[j], wz[j]};
-    const Vec3 v_rel{vx[i] - vx[j], vy[i] - vy[j], vz[i] - vz[j]};
-    const Vec3 vr = v_rel + cross(spin, n);
-    double tau = dtau;
-    if (fresh && incremental)
-      tau = std::min(time_since_touch(p.x, p.y, -v_rel.x, -v_rel.y, R, Lc, p.z, -v_rel.z), dtau);
-    const double dn = incremental ? S.dn[k] + dot(vr, n) * tau : R - Lc;  // eqs 14, 16
-    ContactForce3 f = advance_contact(S, static_cast<std::size_t>(k), params_, dn, n, vr, tau, dtau);
-    Vec3 roll;
-    if (rolling) {
-      const Vec3 w_rel{wx[i] - wx[j], wy[i] - wy[j], wz[i] - wz[j]};
-      roll = rolling_torque_3d(params_.mu_r, r[i] * r[j] / R, f.fn_spring, w_rel,
-                               inv_i[i] + inv_i[j], dtau);
-      f.loss.friction += std::sqrt(dot(roll, roll) * dot(w_rel, w_rel)) * dtau;
-    }
-    const double ratio = 1.0 - Lc / R;
+  for (std::int64_t q = 0; q < count; ++q) {
+    const std::int32_t k = listed_slot(on[q]);
+    ldn[k] = out.dn[q];
+    lds[k] = out.ds[q];
+    lds_y[k] = out.ds_y[q];
+    lds_z[k] = out.ds_z[q];
+    const double ratio = out.ratio[q];
     worst = ratio > max_ratio ? k : worst;
     max_ratio = std::max(max_ratio, ratio);
-    sliding += f.sliding;
-    ledger.add(static_cast<std::size_t>(i), 0.0, f.loss);
-    on[count] = static_cast<std::int32_t>(k);
-    cs.fx[k0 + count] = f.force.x;
-    cs.fy[k0 + count] = f.force.y;
-    cs.fz[k0 + count] = f.force.z;
-    cs.ftx[k0 + count] = f.lever.x;
-    cs.fty[k0 + count] = f.lever.y;
-    cs.ft[k0 + count] = f.lever.z;
-    cs.ratio[k0 + count] = ratio;
-    cs.roll_x[k0 + count] = roll.x;
-    cs.roll_y[k0 + count] = roll.y;
-    cs.roll[k0 + count] = roll.z;
-    if (j >= end) {
-      pass.push_back(Push{f.force.x, f.force.y, f.lever.z, ratio, j, roll.z});
-      pass_depth.push_back(PushDepth{f.force.z, f.lever.x, f.lever.y, roll.x, roll.y});
+    sliding += out.sliding[q];
+    ledger.add(static_cast<std::size_t>(li[k]), 0.0, ContactLoss{out.dashpot[q], out.friction[q]});
+    if (lj[k] >= end) {
+      pass.push_back(Push{out.fx[q], out.fy[q], out.lever_z[q], ratio, lj[k], out.roll_z[q]});
+      pass_depth.push_back(
+          PushDepth{out.fz[q], out.lever_x[q], out.lever_y[q], out.roll_x[q], out.roll_y[q]});
     }
-    ++count;
   }
   acc.contacts = static_cast<int>(count);
   acc.sliding += sliding;
@@ -181,7 +146,7 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
     const ContactScratch& cs = list_.contact_scratch;
     for (int q = 0; q < acc.contacts; ++q) {
       const std::int64_t c = acc.k0 + q;
-      const std::int32_t k = on[q];
+      const std::int32_t k = listed_slot(on[q]);
       const std::int32_t i = S.i[k], j = S.j[k];
       const Vec3 f{cs.fx[c], cs.fy[c], cs.fz[c]};
       const Vec3 lever{cs.ftx[c], cs.fty[c], cs.ft[c]};
