@@ -140,16 +140,7 @@ void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin
       nb[u] = v;
     }
     if (m + static_cast<std::size_t>(count) > out.i.size()) {
-      const std::size_t grown = std::max(2 * out.i.size(), m + count + 64);
-      out.i.resize(grown);
-      out.j.resize(grown);
-      out.dn.resize(grown);
-      out.ds.resize(grown);
-      out.touching.resize(grown);
-      if (depth_) {
-        out.ds_y.resize(grown);
-        out.ds_z.resize(grown);
-      }
+      out.resize(std::max(2 * out.i.size(), m + count + 64), depth_);
     }
     std::int32_t o = carry ? old.first_begin[a] : 0;
     const std::int32_t oe = carry ? old.first_begin[a + 1] : 0;
@@ -205,15 +196,7 @@ void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, s
     offset_[0] = 0;
     for (int u = 0; u < T; ++u) offset_[u + 1] = offset_[u] + found_[u].count;
     const std::size_t m = offset_[T];
-    out.i.resize(m);
-    out.j.resize(m);
-    out.dn.resize(m);
-    out.ds.resize(m);
-    out.touching.resize(m);
-    if (depth_) {
-      out.ds_y.resize(m);
-      out.ds_z.resize(m);
-    }
+    out.resize(m, depth_);
     out.first_begin[n] = static_cast<std::int32_t>(m);
     active.resize(m);
     code.resize(m);

@@ -21,16 +21,33 @@
 namespace fluidbed {
 
 // The pair slots with their history, sorted by (i, j), and where each particle's entries begin.
-struct PairSlots {
+// The per-slot arrays of a list of pairs: the list itself (PairSlots) and each thread's share
+// while it is built (NeighbourList::Found).
+struct SlotArrays {
   std::vector<std::int32_t> i, j;
   std::vector<double> dn, ds;          // m, normal and tangential (shear) displacement
   // In a thick slab the shear displacement is a vector: ds holds its x component, these its y
   // and z components (empty in a monolayer, where ds is along the contact's tangent).
   std::vector<double> ds_y, ds_z;
   std::vector<std::uint8_t> touching;  // touching at the last evaluation
+  std::size_t size() const { return i.size(); }
+  // Every array to m slots (the depth components only in a thick slab).
+  void resize(std::size_t m, bool depth) {
+    i.resize(m);
+    j.resize(m);
+    dn.resize(m);
+    ds.resize(m);
+    touching.resize(m);
+    if (depth) {
+      ds_y.resize(m);
+      ds_z.resize(m);
+    }
+  }
+};
+
+struct PairSlots : SlotArrays {
   // Entries [first_begin[p], first_begin[p + 1]) have i == p (n + 1 values).
   std::vector<std::int32_t> first_begin;
-  std::size_t size() const { return i.size(); }
 };
 
 // Scratch of the pair pass, per slot: the touching pairs' results, compact (dem/pair_kernel.hpp).
@@ -96,10 +113,7 @@ class NeighbourList {
 
  private:
   // One thread's pairs while a build runs (thread 0 writes straight into the new slot set).
-  struct Found {
-    std::vector<std::int32_t> i, j;
-    std::vector<double> dn, ds, ds_y, ds_z;
-    std::vector<std::uint8_t> touching;
+  struct Found : SlotArrays {
     std::vector<std::int32_t> near;   // scratch: one particle's partners
     std::size_t count = 0;
   };
