@@ -196,10 +196,25 @@ int main(int argc, char** argv) {
   study->add_option("--size", study_args.size, "full (default) or tiny (seconds, a small bed)")
       ->check(CLI::IsMember({"full", "tiny"}));
   study->add_flag("--quick", study_args.quick, "the same as --size tiny");
-  study->add_option("--resume", study_args.resume,
-                    "finish the study in folder DIR (interrupted or killed): its finished points "
-                    "are read back, the rest measured; the same NAME and --size as it was started "
-                    "with");
+  auto* study_resume = study->add_option("--resume", study_args.resume,
+                    "finish the study in folder DIR (interrupted or killed; without DIR: the "
+                    "--out folder): its finished points are read back, the rest measured; the "
+                    "same NAME and --size as it was started with")
+      ->expected(0, 1);
+  study->add_option("--scene", study_args.scene,
+                    "sensitivity: the scene file (TOML) to study");
+  study->add_option("--vary", study_args.vary,
+                    "sensitivity: KEY=V1,V2,... or KEY1,KEY2=A1:B1,A2:B2, one key (or tuple) "
+                    "varied at a time from the scene; repeat for more")
+      ->take_all()
+      ->allow_extra_args(false);
+  study->add_option("--set", study_args.overrides,
+                    "sensitivity: override a value of the studied scene: section.key=value")
+      ->take_all()
+      ->allow_extra_args(false);
+  study->add_option("--until", study_args.until,
+                    "sensitivity: simulated time of each run, s (default: the scene's time.end)")
+      ->check(CLI::PositiveNumber);
   study->add_option("--seeds", study_args.seeds,
                     "over several packings of the bed (stiffness, coupling, model-form): N seeds "
                     "from the scene's or a list 3,7,11; each study in DIR/seeds/S/, the ensemble "
@@ -272,7 +287,10 @@ int main(int argc, char** argv) {
       return fluidbed::app::reproduce_command(reproduce_args);
     }
     if (*exporter) return fluidbed::app::export_command(export_args);
-    if (*study) return fluidbed::app::study_command(study_args);
+    if (*study) {
+      study_args.resume_out = study_resume->count() > 0 && study_args.resume.empty();
+      return fluidbed::app::study_command(study_args);
+    }
     if (*view) {
       view_args.frame_interval_given = view->count("--frame-interval") > 0;
       return fluidbed::app::view_command(view_args);

@@ -245,6 +245,7 @@ int reproduce_report(const ReproduceArgs& a) {
   // use their own scenes; the --set overrides above do not apply to them.
   if (InterruptGuard::received() != 0) throw Interrupted{};
   for (const study::Info& info : study::all_studies()) {
+    if (info.takes_scene) continue;  // a study of a scene the user names
     study::Options so_study;
     so_study.out = (fs::path(out) / "studies" / info.name).string();
     so_study.size = a.quick ? study::Size::Tiny : study::Size::Full;

@@ -9,6 +9,7 @@
 
 #include "cli/interrupt.hpp"
 #include "core/errors.hpp"
+#include "core/text_format.hpp"
 #include "core/threads.hpp"
 #include "run/ensemble.hpp"
 #include "studies/common.hpp"
@@ -99,6 +100,43 @@ int study_ensemble(const study::Info& info, const study::Options& o, const Study
   return 0;
 }
 
+// `study sensitivity`: a scene the user names, its points over --seeds inside the one study.
+int scene_study(const study::Info& info, study::Options o, const StudyArgs& a) {
+  using namespace study;
+  const std::string head = "study " + std::string(info.name) + ": ";
+  if (o.size == Size::Tiny) throw InputError(head + "--size is for the built-in studies");
+  o.scene_study = {a.scene, a.overrides, a.vary, a.until, a.seeds};
+  if (o.resume && a.scene.empty() && a.vary.empty() && a.overrides.empty() && a.until == 0.0 &&
+      a.seeds.empty())
+    o.scene_study = stored_scene_study(o.out);  // resumed as it was started
+  if (o.scene_study.scene.empty()) throw InputError(head + "name the scene: --scene SCENE.toml");
+  if (o.scene_study.vary.empty())
+    throw InputError(head + "name what to vary: --vary KEY=V1,V2 (or KEY1,KEY2=A1:B1,A2:B2)");
+  o.command = "fluidbed study " + std::string(info.name) + " --scene " + o.scene_study.scene;
+  for (const std::string& v : o.scene_study.vary) o.command += " --vary '" + v + "'";
+  for (const std::string& v : o.scene_study.overrides) o.command += " --set '" + v + "'";
+  if (o.scene_study.until > 0.0) o.command += " --until " + format_number("%g", o.scene_study.until);
+  if (!o.scene_study.seeds.empty()) o.command += " --seeds " + o.scene_study.seeds;
+  o.command += " --out " + o.out;
+  check_study_resume(info, o);  // before the first line: a refused resume is one line
+  std::printf("study %s of %s (%d worker threads%s)\n", info.name, o.scene_study.scene.c_str(),
+              resolve_threads(o.workers), o.resume ? ", resumed" : "");
+  Report r;
+  try {
+    const InterruptGuard interrupts;
+    r = run_study(info, o);
+  } catch (const Interrupted&) {
+    say_interrupted("fluidbed study " + std::string(info.name) + " --out " + o.out + " --resume");
+    return 130;
+  }
+  std::printf("%d points, %d failed (recorded); %.0f s\n", r.points, r.failed, r.wall_time);
+  std::printf("wrote %s/study.csv, %s/runs.csv, %s/summary.md", o.out.c_str(), o.out.c_str(),
+              o.out.c_str());
+  for (const auto& c : r.charts) std::printf(", %s", c.c_str());
+  std::printf("\n");
+  return 0;
+}
+
 }  // namespace
 
 int study_command(const StudyArgs& a) {
@@ -126,6 +164,7 @@ int study_command(const StudyArgs& a) {
     o.out = a.resume;
     o.resume = true;
   }
+  o.resume = o.resume || a.resume_out;
   o.workers = a.jobs;
   o.command = "fluidbed study " + a.name + (o.size == Size::Tiny ? " --size tiny" : "") +
               " --out " + o.out;
@@ -134,6 +173,13 @@ int study_command(const StudyArgs& a) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   };
+  if (info->takes_scene) return scene_study(*info, o, a);
+  for (const auto& [given, option] : {std::pair{!a.scene.empty(), "--scene"},
+                                      {!a.vary.empty(), "--vary"}, {!a.overrides.empty(), "--set"},
+                                      {a.until > 0.0, "--until"}})
+    if (given)
+      throw InputError("study " + a.name + ": " + option +
+                       " is for study sensitivity; this study runs its own scenes");
   if (!a.seeds.empty() || (o.resume && holds_ensemble(o.out)))
     return study_ensemble(*info, o, a);
   check_study_resume(*info, o);  // before the first line: a refused resume is one line

@@ -60,6 +60,11 @@ const std::vector<Info>& all_studies() {
        "bounds the teaching scene was chosen by",
        "about 4 min (9 runs of 6 s of the paper's bed)", "about 10 s", teaching_study, true,
        teaching_bounds()},
+      {"sensitivity",
+       "Sensitivity of a scene (--scene, --vary): which settings move its figures beyond their "
+       "spread over packings",
+       "(points x seeds) runs of --until s of the scene, two at a time", "-", sensitivity_study,
+       false, {}, true},
   };
   return list;
 }
@@ -73,6 +78,11 @@ const Info* find_study(const std::string& name) {
 namespace {
 
 const char* size_name(Size s) { return s == Size::Tiny ? "tiny" : "full"; }
+
+nlohmann::json scene_study_json(const Options::SceneStudy& a) {
+  return {{"scene", a.scene}, {"set", a.overrides}, {"vary", a.vary}, {"until", a.until},
+          {"seeds", a.seeds}};
+}
 
 fs::path points_dir(const Options& o) { return fs::path(o.out) / "points"; }
 
@@ -100,6 +110,34 @@ void check_study_resume(const Info& info, const Options& o) {
   if (size != size_name(o.size))
     throw InputError(head + "it holds study " + name + " at --size " + size + ", not --size " +
                      size_name(o.size));
+  if (info.takes_scene) {
+    const Options::SceneStudy was = stored_scene_study(o.out);
+    const Options::SceneStudy& now = o.scene_study;
+    if (now.scene != was.scene)
+      throw InputError(head + "it studies the scene " + was.scene + ", not " + now.scene);
+    if (now.overrides != was.overrides || now.vary != was.vary || now.until != was.until ||
+        now.seeds != was.seeds)
+      throw InputError(head + "it was started with other --set, --vary, --until or --seeds "
+                       "(leave them out to resume it as it was started)");
+  }
+}
+
+Options::SceneStudy stored_scene_study(const std::string& dir) {
+  const std::string head = "cannot resume " + dir + ": ";
+  std::ifstream in(fs::path(dir) / "study.json");
+  if (!in) throw InputError(head + "no study to resume there (no study.json)");
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in).at("scene_study");
+    Options::SceneStudy a;
+    a.scene = j.at("scene").get<std::string>();
+    a.overrides = j.at("set").get<std::vector<std::string>>();
+    a.vary = j.at("vary").get<std::vector<std::string>>();
+    a.until = j.at("until").get<double>();
+    a.seeds = j.at("seeds").get<std::string>();
+    return a;
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(head + "its study.json does not say which scene it studies");
+  }
 }
 
 Report run_study(const Info& info, const Options& o) {
@@ -110,10 +148,11 @@ Report run_study(const Info& info, const Options& o) {
   if (ec) throw InputError("cannot create output folder " + o.out + ": " + ec.message());
   if (!o.resume) {  // afresh: an earlier run's points are not this run's
     fs::remove_all(points_dir(o), ec);
-    const nlohmann::json j = {{"format", 1},
+    nlohmann::json j = {{"format", 1},
                               {"study", info.name},
                               {"size", size_name(o.size)},
                               {"command", o.command}};
+    if (info.takes_scene) j["scene_study"] = scene_study_json(o.scene_study);
     write_text((fs::path(o.out) / "study.json").string(), j.dump(2) + "\n");
   }
   for (const char* f : {"study.csv", "summary.md", "status.json"})  // a finished study's
@@ -132,8 +171,10 @@ Report run_study(const Info& info, const Options& o) {
   r.title = info.title;
   r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::string md = "# Study `" + r.name + "`: " + r.title + "\n\n";
-  md += "Made by `fluidbed study " + r.name +
-        (o.size == Size::Tiny ? " --size tiny" : "") + "` in " + fmt("%.0f s", r.wall_time) +
+  md += "Made by `" +
+        (info.takes_scene ? o.command
+                          : "fluidbed study " + r.name + (o.size == Size::Tiny ? " --size tiny" : "")) +
+        "` in " + fmt("%.0f s", r.wall_time) +
         " on " + std::to_string(resolve_threads(o.workers)) + " worker thread(s); " +
         std::to_string(r.points) + " points, " + std::to_string(r.failed) +
         " of them failed runs (recorded in study.csv with the reason). Every number is measured "

@@ -44,6 +44,16 @@ struct Options {
   // A member of `study NAME --seeds`: its bed (bed_scene(Options)) starts from the packing of
   // this lattice seed instead of the scene's own.
   std::optional<std::uint64_t> seed;
+  // A study of a scene the user names (Info::takes_scene; `study sensitivity`): the scene file,
+  // its --set, the --vary texts (studies/sensitivity.hpp), the end time in s (0: the scene's
+  // time.end) and --seeds ("": the scene's own packing only).
+  struct SceneStudy {
+    std::string scene;
+    std::vector<std::string> overrides, vary;
+    double until = 0.0;
+    std::string seeds;
+  };
+  SceneStudy scene_study;
 };
 
 // A study stopped by Options::stop: it wrote no study.csv, summary.md or status.json.
@@ -84,6 +94,9 @@ struct Info {
   // Bounds its points are judged by (study.csv has a verdict column): with `--seeds`, the
   // ensemble summary judges every point by them over the seeds (write_study_ensemble).
   std::vector<Bound> bounds = {};
+  // It studies a scene the user names (Options::scene_study) instead of its own: `reproduce`
+  // leaves it out, and it takes --seeds itself (each point over the packings).
+  bool takes_scene = false;
 };
 
 // A point judged by bounds: `value(column)` its number (NaN: none), `two_se(column)` two
@@ -110,6 +123,9 @@ Report run_study(const Info& info, const Options& o);
 // With o.resume: InputError (one line, naming what differs) unless o.out holds a study that
 // run_study(info, o) would resume. Callers check before they touch the folder.
 void check_study_resume(const Info& info, const Options& o);
+// What a study of a scene (Info::takes_scene) in DIR was started with (its study.json), for a
+// resume that does not repeat it; InputError of one line when DIR holds none.
+Options::SceneStudy stored_scene_study(const std::string& dir);
 // The report a finished study left in its folder (its finished marker DIR/status.json, written
 // last by run_study with the report and the size it ran at): `reproduce --resume` keeps it instead of running the study again.
 // Nothing when there is none, it is unreadable, or it is of another size.
@@ -288,6 +304,7 @@ Report model_form_study(const Options& o);
 Report failures_study(const Options& o);
 Report energy_study(const Options& o);
 Report teaching_study(const Options& o);
+Report sensitivity_study(const Options& o);  // studies/sensitivity.hpp
 // The bounds the teaching scene was chosen by (docs/studies.md), as teaching_study's columns.
 const std::vector<Bound>& teaching_bounds();
 
