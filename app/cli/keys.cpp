@@ -81,7 +81,10 @@ void print_toml(const std::vector<SceneKey>& keys) {
     section = k.section;
     std::cout << "# " << k.help << "  " << takes(k) << "\n";
     for (const auto& [name, help] : k.choices) std::cout << "#   " << name << ": " << help << "\n";
-    std::cout << k.name << " = " << k.default_value << "\n";
+    if (k.unset)  // a line to uncomment: left out, it follows the key its help names
+      std::cout << "# " << k.name << " = \n";
+    else
+      std::cout << k.name << " = " << k.default_value << "\n";
   }
 }
 

@@ -18,6 +18,7 @@ namespace fluidbed {
 DemSolver::DemSolver(const DemParams& d, Particles particles)
     : walls_(d.walls),
       params_(d.contact),
+      wall_params_(d.contact),
       integrator_(d.integrator),
       incremental_(d.incremental),
       frozen_(d.frozen),
@@ -27,6 +28,7 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
       height_(d.height),
       thickness_(d.thickness),
       overlap_limit_(d.overlap_limit) {
+  wall_params_.mu = d.wall_mu.value_or(d.contact.mu);
   depth_ = particles.has_depth();
   for (std::size_t c = 0; c < walls_.size(); ++c)
     (walls_[c].nz == 0.0 ? planar_walls_ : depth_walls_).push_back(static_cast<int>(c));
@@ -242,7 +244,7 @@ bool DemSolver::particle_pass(int t, std::size_t b, std::size_t e, double dtau, 
   // each build, ascending).
   WallHistory& wh = state_.walls;
   const int nw = static_cast<int>(walls_.size());
-  const ContactParams params = params_;
+  const ContactParams params = wall_params_;
   std::uint8_t* active = wh.active.data();
   double* hdn = wh.dn.data();
   double* hds = wh.ds.data();

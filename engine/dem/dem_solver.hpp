@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ namespace fluidbed {
 // (sim/model_params.hpp: dem_params_for).
 struct DemParams {
   ContactParams contact;    // eqs 3-7
+  std::optional<double> wall_mu;  // friction at the walls; unset: contact.mu
   bool incremental = true;  // eqs 13-17; false: the geometric overlap
   Integrator integrator = Integrator::Newmark;
   double dt = 1.5e-5;                 // s
@@ -167,6 +169,7 @@ class DemSolver {
   NeighbourList list_;
   std::vector<Wall> walls_;
   ContactParams params_;
+  ContactParams wall_params_;  // params_ with the walls' friction
   Integrator integrator_;
   bool incremental_;
   bool frozen_;

@@ -190,10 +190,10 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
     double tau = dtau;
     if (fresh && incremental) tau = std::min(time_since_touch_wall(overlap, vn), dtau);
     const double dn = incremental ? wh.dn[s] + vn * tau : overlap;
-    ContactForce3 f = advance_contact(wh, s, params_, dn, n, vr, tau, dtau);
+    ContactForce3 f = advance_contact(wh, s, wall_params_, dn, n, vr, tau, dtau);
     Vec3 roll;
-    if (params_.mu_r > 0.0) {
-      roll = rolling_torque_3d(params_.mu_r, r[i], f.fn_spring, spin, inv_i[i], dtau);
+    if (wall_params_.mu_r > 0.0) {
+      roll = rolling_torque_3d(wall_params_.mu_r, r[i], f.fn_spring, spin, inv_i[i], dtau);
       f.loss.friction += std::sqrt(dot(roll, roll) * dot(spin, spin)) * dtau;
     }
     wall_ledger.add(i, 0.0, f.loss);

@@ -54,13 +54,22 @@ struct PackingStage {
   std::string from;  // scene file the law comes from ("" for this scene)
 };
 
+// The packing's own friction where the packing scene gives it (settings.hpp), as
+// packing_settings_for packs with it.
+PackingStage with_packing_friction(PackingStage st, const Settings& packing) {
+  if (packing.particles.packing_friction) st.law.mu = *packing.particles.packing_friction;
+  if (packing.particles.packing_rolling_friction)
+    st.law.mu_r = *packing.particles.packing_rolling_friction;
+  return st;
+}
+
 PackingStage packing_stage(const Settings& s) {
   PackingStage st;
   st.law = contact_params(s);
   st.dt = s.time.dt;
   st.gravity = s.physics.gravity;
   st.seconds = s.particles.packing_time;
-  if (s.particles.packing_scene.empty()) return st;
+  if (s.particles.packing_scene.empty()) return with_packing_friction(st, s);
   const std::string path = scene_path(s, s.particles.packing_scene);
   const Settings other = load_scene(path);
   if (other.particles.count != s.particles.count ||
@@ -77,7 +86,7 @@ PackingStage packing_stage(const Settings& s) {
   st.dt = other.time.dt;
   st.gravity = other.physics.gravity;
   st.from = s.particles.packing_scene;
-  return st;
+  return with_packing_friction(st, other);
 }
 
 // The particles at the start of the deck.
@@ -342,6 +351,9 @@ LiggghtsCase write_liggghts_case(const Settings& s, const std::string& dir,
         "particles.frozen: a fixed bed only lets the gas through, and LIGGGHTS has "
         "no gas; there is nothing to export");
   check_integrator(s, "");
+  if (s.contact.wall_friction)
+    throw InputError("contact.wall_friction: the deck's walls take the particles' law (one atom "
+                     "type), so walls with their own friction are not exported (leave it unset)");
   const Particles p = start_particles(s);
   // A thick slab's spheres move in z: the front and back walls are contacts there as here.
   LiggghtsExportOptions o = options;

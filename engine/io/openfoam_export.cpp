@@ -539,6 +539,9 @@ OpenfoamCase write_openfoam_case(const Settings& s, const std::string& dir,
         "it --to liggghts, or add a [gas] section)");
   if (s.particles.frozen)
     throw InputError("particles.frozen: DPMFoam's particles cannot be held in place");
+  if (s.contact.wall_friction)
+    throw InputError("contact.wall_friction: the DPMFoam case's walls take the particles' "
+                     "friction, so walls with their own are not exported (leave it unset)");
   if (slab_has_depth(s.domain, s.particles.diameter))
     throw InputError("domain.thickness: the DPMFoam case keeps its spheres on the mid-plane "
                      "(empty front and back patches), so a thick slab, whose particles move in "

@@ -27,6 +27,13 @@ Settings packing_settings_for(const Settings& bed) {
   p.time.end = bed.particles.packing_time;
   p.diagnostics = DiagnosticsSettings{};
   p.diagnostics.overlap_limit = bed.diagnostics.overlap_limit;
+  // The packing's own contact values, where the scene gives them (consumed here: the packing
+  // run's settings hold them as its contact values).
+  if (bed.particles.packing_friction) p.contact.friction = *bed.particles.packing_friction;
+  if (bed.particles.packing_rolling_friction)
+    p.contact.rolling_friction = *bed.particles.packing_rolling_friction;
+  p.particles.packing_friction.reset();
+  p.particles.packing_rolling_friction.reset();
   return p;
 }
 

@@ -9,6 +9,7 @@ namespace fluidbed {
 namespace {
 
 std::string type_of(double) { return "number"; }
+std::string type_of(const std::optional<double>&) { return "number"; }
 std::string type_of(int) { return "integer"; }
 std::string type_of(std::uint64_t) { return "integer"; }
 std::string type_of(bool) { return "true or false"; }
@@ -30,6 +31,10 @@ std::string default_text(double v) {
   if (t.find_first_of(".eEn") == std::string::npos) t += ".0";
   return t;
 }
+// Unset by default: it follows another key (its help says which).
+std::string default_text(const std::optional<double>& v) {
+  return v ? default_text(*v) : std::string("unset");
+}
 template <class T>
 std::string default_text(const T& v) {
   return toml_value(v);
@@ -47,6 +52,7 @@ struct KeyCollector {
     k.name = std::string(name);
     k.type = type_of(v);
     k.default_value = default_text(v);
+    if constexpr (std::is_same_v<T, std::optional<double>>) k.unset = !v;
     k.unit = std::string(info.unit);
     k.help = std::string(info.help);
     if constexpr (is_option_v<T>) {

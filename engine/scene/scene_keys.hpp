@@ -16,6 +16,7 @@ struct SceneKey {
   std::string range;          // "> 0", "(0, 1]"; a choice: its names; text: "any text"
   std::string help;           // one line
   std::vector<std::pair<std::string, std::string>> choices;  // a choice: each name and its help
+  bool unset = false;  // no default of its own: it follows the key its help names
 };
 
 // Every key of every section, in file order.

@@ -56,6 +56,13 @@ struct Reader {
     field = *v;
     if (!std::isfinite(field)) throw InputError(where(key) + " must be a finite number");
   }
+  // A number that may be left unset (it then follows another key: settings.hpp).
+  void operator()(std::string_view key, std::optional<double>& field, const FieldInfo& info) const {
+    if (!table.get(key)) return;
+    double v = 0.0;
+    (*this)(key, v, info);
+    field = v;
+  }
   // Points: an array of [x, y] arrays of two finite numbers each.
   void operator()(std::string_view key, std::vector<ProbePoint>& field, const FieldInfo&) const {
     const toml::node* n = table.get(key);
@@ -229,7 +236,13 @@ struct TomlWriter {
     // that text, and a run's resolved scene.toml stays as it was.
     if constexpr (std::is_same_v<T, std::vector<ProbePoint>>)
       if (v.empty()) return;
-    *out << key << " = " << toml_value(v);
+    // An unset number (it follows another key) is left out for the same reason.
+    if constexpr (std::is_same_v<T, std::optional<double>>) {
+      if (!v) return;
+      *out << key << " = " << toml_value(*v);
+    } else {
+      *out << key << " = " << toml_value(v);
+    }
     if (!info.unit.empty()) *out << "  # " << info.unit;
     *out << "\n";
   }

@@ -51,6 +51,10 @@ struct ParticleSettings {
   // frictionless, undamped bed that never settles packs as the realistic one). Relative paths
   // are relative to this scene file. Empty: this scene.
   std::string packing_scene;
+  // "packed" placement: the packing's own Coulomb and rolling friction (unset: contact.friction
+  // and contact.rolling_friction). Peers load a bed with other contact values than they fluidize
+  // it with (Lethe's pseudo-2D bed packs with a rolling friction of 0.2, then runs with 0.025).
+  std::optional<double> packing_friction, packing_rolling_friction;
   bool frozen = false;       // held in place (a fixed bed): the gas flows through, nothing moves
 };
 
@@ -59,7 +63,10 @@ struct ContactSettings {
   double tangential_stiffness_ratio = 1.0;  // kappa_t / kappa_n (the paper: 1)
   double damping = 0.15;                  // kg/s, eta_n
   double tangential_damping_ratio = 1.0;  // eta_t / eta_n (the paper: 1)
-  double friction = 0.3;                  // gamma, particles and walls
+  double friction = 0.3;                  // gamma, particles (and walls, unless wall_friction)
+  // gamma at the walls (unset: friction). A bed a few spheres deep touches its front and back
+  // walls everywhere; peers give the walls their own value.
+  std::optional<double> wall_friction;
   // Rolling resistance mu_r (the paper's model has none: 0): a torque mu_r R_r |F_n| against the
   // contact's relative rolling, R_r = R_i R_j / (R_i + R_j) for a pair and R_i at a wall.
   double rolling_friction = 0.0;
@@ -220,6 +227,11 @@ void visit_fields(ParticleSettings& s, V&& v) {
     {"s", positive, "\"packed\" placement: how long the lattice start falls"});
   v("packing_scene", s.packing_scene,
     {"", any, "\"packed\" placement: a scene that makes the packing instead (empty: this one)"});
+  v("packing_friction", s.packing_friction,
+    {"", non_negative, "\"packed\" placement: the packing's Coulomb friction (unset: contact.friction)"});
+  v("packing_rolling_friction", s.packing_rolling_friction,
+    {"", non_negative,
+     "\"packed\" placement: the packing's rolling friction (unset: contact.rolling_friction)"});
   v("frozen", s.frozen, {"", any, "held in place: a fixed bed the gas flows through"});
 }
 template <class V>
@@ -231,7 +243,10 @@ void visit_fields(ContactSettings& s, V&& v) {
   v("damping", s.damping, {"kg/s", non_negative, "normal damping coefficient eta_n"});
   v("tangential_damping_ratio", s.tangential_damping_ratio,
     {"", non_negative, "eta_t / eta_n (the paper: 1)"});
-  v("friction", s.friction, {"", non_negative, "Coulomb friction gamma, particles and walls"});
+  v("friction", s.friction,
+    {"", non_negative, "Coulomb friction gamma, particles (and walls unless wall_friction)"});
+  v("wall_friction", s.wall_friction,
+    {"", non_negative, "Coulomb friction gamma at the walls (unset: contact.friction)"});
   v("rolling_friction", s.rolling_friction,
     {"", non_negative,
      "rolling resistance mu_r: a torque mu_r R |F_n| against the relative rolling (0: none)"});

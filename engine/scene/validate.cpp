@@ -43,6 +43,10 @@ struct RangeCheck {
   void operator()(std::string_view key, int v, const FieldInfo& info) const {
     check(key, v, info.range, true);
   }
+  void operator()(std::string_view key, const std::optional<double>& v,
+                  const FieldInfo& info) const {
+    if (v) check(key, *v, info.range, false);
+  }
   // Names, flags, paths and the seed: their type, checked by the loader, is all they need.
   template <class T>
   void operator()(std::string_view, const T&, const FieldInfo&) const {}
@@ -107,6 +111,10 @@ void validate(const Settings& s) {
 
   const auto& d = s.domain;
   const auto& p = s.particles;
+  if (!p.packing_scene.empty() && (p.packing_friction || p.packing_rolling_friction))
+    refuse(p.packing_friction ? "particles.packing_friction" : "particles.packing_rolling_friction",
+           "is for a bed that packs itself; with particles.packing_scene, that scene's contact "
+           "values make the packing (set them there)");
   if (p.diameter > d.width || p.diameter > d.height)
     refuse("particles.diameter", "is larger than the domain");
   // The slab must hold one layer: spheres move in x-y between the front and back walls.

@@ -11,6 +11,7 @@ DemParams dem_params_for(const Settings& s) {
   d.contact.eta_n = s.contact.damping;
   d.contact.eta_t = s.contact.damping * s.contact.tangential_damping_ratio;
   d.contact.mu = s.contact.friction;
+  d.wall_mu = s.contact.wall_friction;
   d.contact.mu_r = s.contact.rolling_friction;
   d.incremental = s.contact.displacement == Displacement::Incremental;
   d.integrator = s.time.integrator;

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/errors.hpp"
+#include "run/packed_bed.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene_loader.hpp"
 
@@ -142,4 +143,43 @@ TEST(Scene, MissingFileNamesThePath) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.toml"), std::string::npos);
   }
+}
+
+TEST(Scene, KeysThatFollowAnotherAreLeftOutUntilSet) {
+  // Unset, contact.wall_friction follows contact.friction and is not in the resolved scene (whose
+  // text keys the packed-bed cache, so a scene without it resolves as before the key existed).
+  const Settings plain = parse_scene("", "t.toml");
+  EXPECT_FALSE(plain.contact.wall_friction);
+  EXPECT_EQ(to_toml(plain).find("wall_friction"), std::string::npos);
+  const Settings set = parse_scene("[contact]\nwall_friction = 0.1\n", "t.toml",
+                                   {"particles.packing_rolling_friction=0.2"});
+  ASSERT_TRUE(set.contact.wall_friction);
+  EXPECT_DOUBLE_EQ(*set.contact.wall_friction, 0.1);
+  const std::string text = to_toml(set);
+  EXPECT_NE(text.find("wall_friction = 0.1"), std::string::npos) << text;
+  EXPECT_EQ(to_toml(parse_scene(text, "resolved.toml")), text);
+  EXPECT_NE(error_of("", {"contact.wall_friction=-0.1"}).find("contact.wall_friction"),
+            std::string::npos);
+  EXPECT_NE(error_of("", {"contact.wall_friction=true"}).find("a number"), std::string::npos);
+  EXPECT_NE(error_of("[particles]\nplacement = 'packed'\npacking_scene = 'other.toml'\n",
+                     {"particles.packing_rolling_friction=0.2"})
+                .find("particles.packing_rolling_friction"),
+            std::string::npos);
+}
+
+TEST(Scene, PackingFrictionIsThePackingsOwn) {
+  // Lethe's loading: packed with rolling friction 0.2, fluidized with 0.025.
+  const Settings bed = parse_scene("[particles]\nplacement = 'packed'\n", "t.toml",
+                                   {"contact.rolling_friction=0.025",
+                                    "particles.packing_rolling_friction=0.2",
+                                    "particles.packing_friction=0.5"});
+  const Settings packing = packing_settings_for(bed);
+  EXPECT_DOUBLE_EQ(packing.contact.rolling_friction, 0.2);
+  EXPECT_DOUBLE_EQ(packing.contact.friction, 0.5);
+  EXPECT_FALSE(packing.particles.packing_rolling_friction);  // consumed: the packing's own values
+  EXPECT_DOUBLE_EQ(bed.contact.rolling_friction, 0.025);
+  // Unset: the packing takes the bed's contact values.
+  const Settings same = packing_settings_for(parse_scene("", "t.toml"));
+  EXPECT_DOUBLE_EQ(same.contact.rolling_friction, Settings{}.contact.rolling_friction);
+  EXPECT_DOUBLE_EQ(same.contact.friction, Settings{}.contact.friction);
 }

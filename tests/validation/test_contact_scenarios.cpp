@@ -76,6 +76,46 @@ TEST(Rolling, SlidingSphereEndsRollingAtFiveSevenths) {
   }
 }
 
+TEST(Rolling, WallFrictionAloneSetsTheSlidingOnTheFloor) {
+  // The sphere of SlidingSphereEndsRollingAtFiveSevenths, with the walls' own friction gamma_w:
+  // the floor's friction slows it at gamma_w g and spins it up at 5 gamma_w g / (2 R), so it
+  // rolls from t* = 2 v0 / (7 gamma_w g) on (closed form). The particles' friction plays no part.
+  const double v0 = 1.0, r = 0.002;
+  auto rolling_from = [&](double wall_mu, double* v_end, double* w_end) {
+    Settings s = single_particle(0.02, r, v0, 0.0);
+    s.domain.width = 1.0;
+    s.contact.friction = 0.3;
+    s.contact.wall_friction = wall_mu;
+    DemSolver dem(dem_params_for(s), make_particles({{0.02, r, v0, 0.0, 0.0}}));
+    const Particles& p = dem.particles();
+    double t_roll = NAN;
+    const auto steps = static_cast<std::int64_t>(0.5 / s.time.dt);
+    for (std::int64_t k = 1; k <= steps; ++k) {
+      dem.step();
+      if (std::isnan(t_roll) && std::fabs(p.vx[0] + p.w[0] * r) < 1e-3 * p.vx[0])
+        t_roll = static_cast<double>(k) * s.time.dt;
+    }
+    *v_end = p.vx[0];
+    *w_end = p.w[0];
+    return t_roll;
+  };
+  const double g = Settings{}.physics.gravity;
+  for (double mu : {0.1, 0.2}) {
+    double v = 0.0, w = 0.0;
+    const double t = rolling_from(mu, &v, &w);
+    const double closed = 2.0 * v0 / (7.0 * mu * g);
+    std::printf("gamma_w %.1f: rolls from %.5f s (closed form %.5f s), v / v0 = %.5f\n", mu, t,
+                closed, v / v0);
+    EXPECT_NEAR(t, closed, 0.01 * closed) << mu;
+    EXPECT_NEAR(v, 5.0 / 7.0 * v0, 0.02 * 5.0 / 7.0 * v0) << mu;
+  }
+  // Frictionless walls: no tangential force at all, whatever the particles' friction.
+  double v = 0.0, w = 0.0;
+  EXPECT_TRUE(std::isnan(rolling_from(0.0, &v, &w)));
+  EXPECT_EQ(v, v0);
+  EXPECT_EQ(w, 0.0);
+}
+
 TEST(Rolling, ResistanceStopsARollingSphereAtTheClosedFormDistance) {
   // Rolling without slip at v0 = 0.2 m/s on the floor with contact.rolling_friction = 0.1: the
   // torque mu_r R m g dissipates mu_r m g v, the rolling sphere's kinetic energy is 7/10 m v^2, so

@@ -317,6 +317,21 @@ TEST(LiggghtsExport, PackedStartRunsThePackingFirstWithThePackingScenesLaw) {
   EXPECT_NE(read_file(c.deck).find("U = 2.8 m/s"), std::string::npos);  // the jet left out
 }
 
+TEST(LiggghtsExport, PackingFrictionIsThePackingStagesLaw) {
+  // Lethe's loading: packed with rolling friction 0.2, then run with the scene's 0.025.
+  const fs::path dir = temp_dir("liggghts-packing-friction");
+  const LiggghtsCase c = write_liggghts_case(
+      packing_scene({"particles.placement=packed", "contact.rolling_friction=0.025",
+                     "particles.packing_rolling_friction=0.2"}),
+      dir.string());
+  const std::string deck = read_file(c.deck);
+  const auto packing = deck.find("coefficientRollingFriction peratomtypepair 1 0.2\n");
+  const auto bed = deck.find("coefficientRollingFriction peratomtypepair 1 0.025\n");
+  ASSERT_NE(packing, std::string::npos) << deck;
+  ASSERT_NE(bed, std::string::npos) << deck;
+  EXPECT_LT(packing, bed);
+}
+
 TEST(LiggghtsExport, StateStartWritesTheSavedPositionsAndVelocities) {
   const fs::path dir = temp_dir("liggghts-state");
   Settings s = single_particle(0.075, 0.0025, 0.1, -0.3);
@@ -353,6 +368,11 @@ TEST(LiggghtsExport, RefusesWhatTheDeckCannotExpress) {
   Settings missing =
       packing_scene({"particles.placement=state", "particles.state_file=no-such.state"});
   EXPECT_THROW(write_liggghts_case(missing, (dir / "missing").string()), InputError);
+  // Walls with their own friction: the deck's walls take the particles' law (one atom type).
+  EXPECT_THROW(write_liggghts_case(packing_scene({"contact.wall_friction=0.1"}),
+                                   (dir / "walls").string()),
+               InputError);
+  EXPECT_FALSE(fs::exists(dir / "walls"));
   // A refusal writes nothing.
   EXPECT_FALSE(fs::exists(dir / "euler"));
   EXPECT_FALSE(fs::exists(dir / "frozen"));

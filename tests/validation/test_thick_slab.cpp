@@ -191,6 +191,23 @@ TEST(ThickSlab, SlidingSphereEndsRollingAtFiveSeventhsInAnyDirection) {
   }
 }
 
+TEST(ThickSlab, WallFrictionSlowsASlidingSphereAtGammaWG) {
+  // Sliding on the floor along (cos a, 0, sin a) with the walls' own friction gamma_w = 0.1 (the
+  // particles' is 0.3): until it rolls, at t* = 2 v0 / (7 gamma_w g) = 0.29 s, its speed falls as
+  // v0 - gamma_w g t (closed form); after 0.2 s, 0.804 m/s.
+  const double a = 0.9, mu = 0.1, t = 0.2;
+  Settings s = thick_box(1.0, 0.2, 1.0, 1.5e-5);
+  s.contact.wall_friction = mu;
+  DemSolver dem(dem_params_for(s), make_spheres({{0.02, 0.002, 0.1, std::cos(a), 0.0, std::sin(a)}}));
+  const auto steps = static_cast<std::int64_t>(std::llround(t / s.time.dt));
+  for (std::int64_t k = 0; k < steps; ++k) dem.step();
+  const Particles& p = dem.particles();
+  const double v = std::hypot(p.vx[0], p.vz[0]), closed = 1.0 - mu * s.physics.gravity * t;
+  std::printf("after %.1f s: v = %.5f m/s (closed form %.5f)\n", t, v, closed);
+  EXPECT_NEAR(v, closed, 0.005 * closed);
+  EXPECT_NEAR(std::atan2(p.vz[0], p.vx[0]), a, 1e-9);
+}
+
 TEST(ThickSlab, RollingResistanceStopsASphereAtTheClosedFormDistanceInAnyDirection) {
   // As Rolling.ResistanceStopsARollingSphereAtTheClosedFormDistance, along (cos a, 0, sin a):
   // 7 v0^2 / (10 mu_r g) = 28.5 mm.
