@@ -105,7 +105,9 @@ int scene_study(const study::Info& info, study::Options o, const StudyArgs& a) {
   using namespace study;
   const std::string head = "study " + std::string(info.name) + ": ";
   if (o.size == Size::Tiny) throw InputError(head + "--size is for the built-in studies");
-  o.scene_study = {a.scene, a.overrides, a.vary, a.until, a.seeds};
+  // The scene by its absolute path: a resume from another folder finds the same file.
+  o.scene_study = {a.scene.empty() ? a.scene : std::filesystem::absolute(a.scene).string(),
+                   a.overrides, a.vary, a.until, a.seeds};
   if (o.resume && a.scene.empty() && a.vary.empty() && a.overrides.empty() && a.until == 0.0 &&
       a.seeds.empty())
     o.scene_study = stored_scene_study(o.out);  // resumed as it was started
