@@ -1,5 +1,10 @@
 // The bubbling bed of van Wachem et al. (2001), five particles deep (assets/scenes/
-// van_wachem_2001.toml): 6 s from its packed bed through the command line, as a user runs it.
+// van_wachem_2001.toml): 12 s from its packed bed through the command line, as a user runs it and
+// as the peer (Lethe) measures it: the pressure at the experiment's point (centre line, 45 mm up)
+// against the outlet, the highest particle, statistics from 2 s. The experiment's figures are
+// printed beside ours. The regime (bubbling) and a regular cycle at the probe are what the
+// experiment shows and what this test will assert once the model reproduces them; today it does
+// not (docs/validation.md (d), issue 35), so they are reported, not asserted.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,45 +19,45 @@
 
 using namespace fluidbed::testing;
 
-TEST(VanWachem, BubblingThickBedRunsSixSecondsAroundItsWeight) {
+TEST(VanWachem, TwelveSecondsAtThePeersSettingsCarryTheBedsWeight) {
   const auto dir = temp_dir("van-wachem");
   const CommandResult r = run_fluidbed(
-      "run " + std::string(FLUIDBED_ASSET_DIR) + "/scenes/van_wachem_2001.toml --out " +
-          (dir / "run").string(),
+      "run " + std::string(FLUIDBED_ASSET_DIR) + "/scenes/van_wachem_2001.toml --threads 2 " +
+          "--bubbles --out " + (dir / "run").string(),
       "van-wachem");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(read_file(dir / "run" / "summary.json"));
   ASSERT_EQ(j["status"], "completed");
-  EXPECT_DOUBLE_EQ(j["sim_time_s"].get<double>(), 6.0);
-  for (const char* key : {"dp_mean_pa", "bed_weight_per_area_pa", "bed_height_mean_m"})
-    ASSERT_TRUE(j.contains(key) && j[key].is_number()) << key;
+  EXPECT_DOUBLE_EQ(j["sim_time_s"].get<double>(), 12.0);
+  ASSERT_TRUE(j.contains("probes") && j["probes"].size() == 1u);
+  const auto& probe = j["probes"][0];
   const double dp = j["dp_mean_pa"], weight = j["bed_weight_per_area_pa"];
-  const double height = j["bed_height_mean_m"];
-  std::printf("dp mean %.1f Pa (bed weight per area %.1f Pa), bed height mean %.4f m, "
-              "largest overlap after start-up %.4f, %.0f wall s per simulated s\n",
-              dp, weight, height, j["max_overlap_ratio_after_startup"].get<double>(),
+  std::printf("probe at (%.3f, %.3f) m: std %.1f Pa (experiment 82 Pa), spectrum peak %.2f Hz "
+              "(experiment 2.3 to 2.4 Hz), %s\n",
+              probe["point_m"][0].get<double>(), probe["point_m"][1].get<double>(),
+              probe["std_pa"].get<double>(), probe["peak_hz"].get<double>(),
+              probe["cycle"].get<std::string>().c_str());
+  std::printf("bed top %.4f to %.4f m, mean %.4f m (experiment 0.094 to 0.149 m); regime %s, "
+              "%.1f bubbles formed per s; dp %.1f Pa (W/A %.1f Pa); %.0f wall s per simulated s\n",
+              j["bed_top_min_m"].get<double>(), j["bed_top_max_m"].get<double>(),
+              j["bed_top_mean_m"].get<double>(), j["bubbles"]["regime"].get<std::string>().c_str(),
+              j["bubbles"]["formed_per_s"].get<double>(), dp, weight,
               j["wall_s_per_sim_s"].get<double>());
-  // A bubbling bed carries its weight: the mean pressure drop over the bed is W/A less what the
+  const double sd = probe["std_pa"].get<double>();
+  EXPECT_TRUE(std::isfinite(sd) && sd > 0.0) << sd;
+  // A fluidized bed carries its weight: the mean pressure drop over the bed is W/A less what the
   // four walls hold by friction (a thick slab's front and back walls touch every sphere near
   // them). 15 %: the spread of one run's mean (one sample of a chaotic bed) and the walls.
   EXPECT_NEAR(dp, weight, 0.15 * weight);
-  // Expanded above the packed bed (0.081 m) and below the column's top.
-  EXPECT_GT(height, 0.081);
-  EXPECT_LT(height, 0.5);
-  // The timeseries carries the bed height at every row.
+  // Risen above the packed bed (0.081 m) and inside the column.
+  EXPECT_GT(j["bed_top_min_m"].get<double>(), 0.081);
+  EXPECT_LT(j["bed_top_max_m"].get<double>(), 0.5);
+  // The timeseries carries the probe at every row.
   std::ifstream csv(dir / "run" / "timeseries.csv");
   std::string header;
   std::getline(csv, header);
-  const std::vector<std::string> columns = split_csv_line(header);
-  std::size_t col = columns.size();
-  for (std::size_t k = 0; k < columns.size(); ++k)
-    if (columns[k] == "bed_height") col = k;
-  ASSERT_LT(col, columns.size()) << header;
+  EXPECT_NE(header.find(",p_probe_1"), std::string::npos) << header;
   int rows = 0;
-  for (std::string line; std::getline(csv, line);) {
-    const double h = std::stod(split_csv_line(line).at(col));
-    EXPECT_GT(h, 0.05) << line;
-    ++rows;
-  }
-  EXPECT_EQ(rows, 6000);
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 12000);
 }
