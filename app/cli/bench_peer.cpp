@@ -171,6 +171,7 @@ int bench_peer_command(const RunArgs& a, const std::string& peer) {
   RunArgs f = a;
   f.scene = scene;
   f.overrides.push_back("gas.enabled=false");
+  f.overrides.push_back("diagnostics.probes=[]");  // a scene's pressure probes go with the gas
   f.until = s.time.end;
   f.out = out;
   std::printf("fluidbed, on the work of the LIGGGHTS deck (the gas left out, as in the deck):\n");
