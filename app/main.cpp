@@ -301,7 +301,7 @@ int main(int argc, char** argv) {
     std::cerr << "fluidbed: error: " << e.what() << "\n";
     return 2;
   } catch (const fluidbed::SimulationFailure& e) {
-    std::cerr << "fluidbed: the simulation failed: " << e.what() << fluidbed::failure_hint()
+    std::cerr << "fluidbed: the simulation failed: " << e.what() << fluidbed::failure_hint(e.what())
               << "\n";
     return 3;
   } catch (const std::runtime_error& e) {

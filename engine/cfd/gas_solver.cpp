@@ -475,7 +475,8 @@ void GasSolver::check(const GasStepReport& rep, double dt) const {
     os.precision(4);
     os << "CFL number " << rep.max_cfl << " > 1 (velocity " << (is_u ? s_.u[face] : s_.v[face])
        << " m/s on the " << (is_u ? "west" : "bottom") << " face of cell (" << std::min(i, nx_ - 1)
-       << ", " << std::min(j, ny_ - 1) << "), dt = " << dt << " s): reduce the time step";
+       << ", " << std::min(j, ny_ - 1) << "), dt = " << dt << " s): the gas "
+       << (!is_u && j == 0 ? "enters" : "moves") << " more than a cell in one gas step";
     fail(os.str());
   }
   const double tol = params_.tolerance;

@@ -182,22 +182,47 @@ std::string describe_check(const Settings& s, const SceneCheck& c) {
 }
 
 namespace {
+// The last scene checked before a run: its warnings and what the gas hint needs.
+struct Hint {
+  std::vector<std::string> warnings;
+  bool gas = false;
+  double superficial_velocity = 0.0, jet_velocity = 0.0, dt = 0.0;
+};
 std::mutex hint_mutex;
-std::string hint;  // the first warning of the last scene checked before a run
+Hint hint;
+
+bool mentions(const std::string& text, const char* word) {
+  return text.find(word) != std::string::npos;
+}
 }  // namespace
 
 void refuse_unsafe_scene(const Settings& s) {
   const SceneCheck c = check_scene(s);
   {
     const std::lock_guard lock(hint_mutex);
-    hint = c.warnings.empty() ? std::string() : c.warnings.front();
+    hint = {c.warnings, c.figures.gas, s.inlet.superficial_velocity, c.figures.jet_velocity,
+            s.time.dt};
   }
   if (!c.refusals.empty()) throw InputError(c.refusals.front() + " (see: fluidbed check)");
 }
 
-std::string failure_hint() {
+std::string failure_hint(const std::string& failure) {
   const std::lock_guard lock(hint_mutex);
-  return hint.empty() ? std::string() : "; likely cause: " + hint;
+  const std::string head = "; likely cause: ";
+  if (mentions(failure, "CFL")) {
+    // The gas outran its step: the gas velocity crossed the limit, whatever the contacts.
+    for (const std::string& w : hint.warnings)
+      if (mentions(w, "CFL")) return head + w;
+    if (!hint.gas) return "";
+    return head + "the gas velocity: the jet enters at " + fmt("%.3g m/s", hint.jet_velocity) +
+           " (inlet.superficial_velocity = " + fmt("%.3g m/s", hint.superficial_velocity) +
+           "), faster than the gas can be followed in a step; lower inlet.superficial_velocity, "
+           "or time.dt (now " +
+           fmt("%.3g s", hint.dt) + ")";
+  }
+  for (const std::string& w : hint.warnings)
+    if (mentions(w, "time.dt") || mentions(w, "contact.")) return head + w;
+  return hint.warnings.empty() ? std::string() : head + hint.warnings.front();
 }
 
 }  // namespace fluidbed

@@ -60,8 +60,11 @@ std::string describe_check(const Settings& s, const SceneCheck& c);
 // (failure_hint).
 void refuse_unsafe_scene(const Settings& s);
 
-// "; likely cause: WARNING" when the last scene given to refuse_unsafe_scene had a warning, else
-// empty: appended to a SimulationFailure's one line.
-std::string failure_hint();
+// "; likely cause: ..." for a SimulationFailure's one line (FAILURE, its what()), from what
+// crossed its limit and the last scene given to refuse_unsafe_scene: a gas CFL number names the
+// gas velocity (the scene's CFL warning when it has one, else the jet's velocity and the key to
+// lower); any other failure names the scene's first warning about its step or contacts, else
+// the first warning. Empty when nothing in the scene points at the cause.
+std::string failure_hint(const std::string& failure);
 
 }  // namespace fluidbed

@@ -154,6 +154,9 @@ void Simulation::load_state(const std::string& path) {
     coupler_->restore(f.coupling, particle_count());
     coupler_->refresh_cells(*gas_);
     gas_speed_ = gas_->max_speed_per_cell();
+    // A state saved before its first gas step (the viewer's start) has still gas: the inlet's
+    // jet counts, as it does for a fresh start (after a gas step it is in the faces already).
+    note_inlet_speed();
   }
 }
 
