@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "core/steps.hpp"
+#include "core/text_format.hpp"
 
 namespace fluidbed::app {
 
@@ -42,12 +43,8 @@ void CommandQueue::wake() {
 // ---------------------------------------------------------------------------------------------
 // ViewEngine
 
-std::string failure_in_the_viewer(const std::string& what, double u) {
+std::string failure_in_the_viewer(const std::string& what, double u, double safe) {
   std::string w = what;
-  // The engine's advice for scene files; the viewer cannot change the time step.
-  for (const char* advice : {": reduce the time step", "; reduce the time step"})
-    if (const auto at = w.find(advice); at != std::string::npos)
-      w.erase(at, std::string(advice).size());
   const char* meaning = "the bed could not be computed any further at this gas velocity";
   if (w.find("CFL") != std::string::npos)
     meaning = "the gas moved further in one time step than the scene's step allows";
@@ -55,10 +52,14 @@ std::string failure_in_the_viewer(const std::string& what, double u) {
     meaning = "the gas pressed the particles into each other harder than the contacts can take";
   else if (w.find("left the bed") != std::string::npos)
     meaning = "the gas blew particles out of the bed";
-  char speed[64];
-  std::snprintf(speed, sizeof speed, "%.2f m/s", u);
+  const std::string speed = format_number("%.2f m/s", u);
+  const std::string what_to_do =
+      safe >= 0.0 && safe < u
+          ? "Press Reset to start again from the packed bed at U = " +
+                format_number("%.2f m/s", safe) + ", the last velocity it ran at"
+          : "Lower the gas, then press Reset to start again from the packed bed at that velocity";
   return std::string("The simulation stopped at U = ") + speed + ": " + meaning + " (" + w +
-         "). Press Reset to start again from the packed bed, and keep the gas below " + speed + ".";
+         "). " + what_to_do + "; keep the gas below " + speed + ".";
 }
 
 ViewEngine::ViewEngine(const Settings& scene, Options options)
@@ -257,7 +258,9 @@ void ViewEngine::loop() {
       sample = session_.step();
     } catch (const SimulationFailure& e) {
       // Stepping stops until Reset; the run/pause switch is left as the user set it.
-      error_ = failure_in_the_viewer(e.what(), session_.held_velocity());
+      session_.failed();
+      error_ = failure_in_the_viewer(e.what(), session_.held_velocity(),
+                                     session_.safe_velocity());
       steps_left_ = 0;
       until_step_ = -1;
       continue;  // stopped() publishes the failed state and the message

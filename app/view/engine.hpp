@@ -66,8 +66,11 @@ struct EngineStatus {
 
 // What the viewer says after a SimulationFailure: the failure in words, what it means for the
 // bed, and what to do in the viewer (lower the gas, Reset), instead of the engine's advice for
-// scene files (a shorter time step, which the viewer cannot change).
-std::string failure_in_the_viewer(const std::string& what, double superficial_velocity);
+// scene files (a shorter time step, which the viewer cannot change). `safe_velocity` (m/s) is
+// the last velocity the bed ran at before it (ViewSession::safe_velocity, < 0: none), the one
+// Reset then returns to.
+std::string failure_in_the_viewer(const std::string& what, double superficial_velocity,
+                                  double safe_velocity);
 
 class ViewEngine {
  public:

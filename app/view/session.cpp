@@ -164,14 +164,24 @@ void ViewSession::apply(const ViewCommand& c) {
     case K::step:
     case K::run_until:
       break;
-    case K::reset:
+    case K::reset: {
+      // The teacher's velocity stays; the one the bed just failed at gives way to the last one
+      // it ran at.
+      double u = held_velocity();
+      if (failed_velocity_ >= 0.0 && u == failed_velocity_ && safe_velocity_ >= 0.0)
+        u = safe_velocity_;
       model_.reset();
+      if (model_.sim().gas() && u != held_velocity()) model_.set_velocity(u);
+      failed_velocity_ = -1.0;
+      steps_at_velocity_ = 0;
       regime_.restart(model_.sim());  // tracking starts again with the bed
       curve_.clear(model_.sim().time(), held_velocity());
       next_sample_ = model_.sim().time() + sample_interval_;
       interval_overlap_ = 0.0;
       break;
+    }
     case K::velocity:
+      if (std::max(0.0, c.value) != held_velocity()) steps_at_velocity_ = 0;
       model_.set_velocity(c.value);
       curve_.velocity(sim.time(), held_velocity());
       break;
@@ -198,6 +208,7 @@ void ViewSession::apply(const ViewCommand& c) {
 std::optional<PlotSample> ViewSession::step() {
   Simulation& sim = model_.sim();
   sim.step();
+  if (++steps_at_velocity_ >= kSafeSteps) safe_velocity_ = held_velocity();
   regime_.after_step(sim);
   interval_overlap_ = std::max(interval_overlap_, sim.dem().diagnostics().max_overlap_ratio);
   if (sim.time() + 0.5 * sim.settings().time.dt < next_sample_) return std::nullopt;

@@ -58,7 +58,8 @@ class ViewModel {
   Simulation& sim() { return *sim_; }
   const Simulation& sim() const { return *sim_; }
   // Back to the starting state: the same state hash as at the start. The model choice (ideal or
-  // not) is kept; the gas velocity is part of the state and returns to the scene's.
+  // not) is kept; the gas velocity is part of the state and returns to the scene's (the session
+  // then sets the one the teacher chose, ViewSession::apply).
   void reset();
   void set_velocity(double u);  // m/s, clamped to >= 0
   void set_ideal(bool on);
@@ -101,7 +102,8 @@ class ViewSession {
   // live curve's times.
   explicit ViewSession(const Settings& scene, double settle = kSettle, double average = kAverage);
 
-  // A command that changes the bed or what is measured of it: reset, velocity, ideal,
+  // A command that changes the bed or what is measured of it: reset (to the packed bed at the
+  // velocity held now; after a failure at it, at the safe velocity), velocity, ideal,
   // stiffness, bubbles, settle, average. The stepping commands (run, pause, step, run_until)
   // are the owner's and change nothing here. InputError for a refused value (the bed goes on as
   // it was); another exception when rebuilding the solvers failed.
@@ -121,6 +123,13 @@ class ViewSession {
   // The last bubble analysis (the regime, the outlines; null before the first).
   std::shared_ptr<const BubbleView> bubbles() const { return regime_.view(); }
   double held_velocity() const;  // m/s, the inlet setting (0 without gas)
+  // The last velocity the bed ran at for kSafeSteps steps without failing (m/s, < 0: none yet):
+  // after a failure at the velocity held now, Reset returns to it.
+  double safe_velocity() const { return safe_velocity_; }
+  // The step just taken failed (SimulationFailure): Reset starts from the packed bed at the safe
+  // velocity unless the velocity is changed first.
+  void failed() { failed_velocity_ = held_velocity(); }
+  static constexpr int kSafeSteps = 10;
 
  private:
   ViewModel model_;
@@ -133,6 +142,9 @@ class ViewSession {
   double sample_interval_ = 1e-3;  // s of simulated time between plot samples
   double next_sample_ = 0.0;       // s
   double interval_overlap_ = 0.0;  // largest overlap ratio since the last sample
+  double safe_velocity_ = -1.0;    // m/s, see safe_velocity()
+  double failed_velocity_ = -1.0;  // m/s, the velocity of the last failure (< 0: none since reset)
+  int steps_at_velocity_ = 0;      // steps since the velocity was last set
 };
 
 }  // namespace fluidbed::app

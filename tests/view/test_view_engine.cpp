@@ -215,17 +215,23 @@ TEST(ViewEngine, ResetRestoresThePackedStateExactly) {
   post_and_wait(e, {K::step, 20.0});
   post_and_wait(e, {K::reset, 0.0});
   const app::EngineStatus r = e.status();
-  EXPECT_EQ(r.state_hash, start);
   EXPECT_EQ(r.steps, 0);
   EXPECT_EQ(r.time, 0.0);
   EXPECT_EQ(r.generation, 1u);
-  EXPECT_EQ(r.superficial_velocity, 2.0);  // the inlet setting is part of the state
+  // The packed bed at the velocity the teacher set (the scene's is 2.0 m/s).
+  EXPECT_EQ(r.superficial_velocity, 3.5);
   EXPECT_EQ(e.snapshots().latest()->step, 0);
   // The same commands from the reset state give the same bits: a reset bed runs as the first.
   post_and_wait(e, {K::velocity, 3.5});
   post_and_wait(e, {K::step, 40.0});
   EXPECT_EQ(e.status().state_hash, after40);
+  // At the scene's velocity, Reset is the start bit for bit.
+  post_and_wait(e, {K::velocity, 2.0});
+  post_and_wait(e, {K::reset, 0.0});
+  EXPECT_EQ(e.status().state_hash, start);
+  EXPECT_EQ(e.status().superficial_velocity, 2.0);
 }
+
 
 // The outlines' toggle: with it the snapshots carry the fine void fraction (holding the spheres'
 // volume) and the outlines; the physics is the same bits; without it the fields are empty again.
@@ -391,6 +397,31 @@ TEST(ViewEngine, FailureSaysWhatToDoAndResetResumesAsDuringARun) {
   EXPECT_NE(failed.error.find("CFL"), std::string::npos) << failed.error;
   EXPECT_EQ(failed.error.find("reduce the time step"), std::string::npos) << failed.error;
   // Reset after the failure: the same as during a run.
+  e.post({K::reset, 0.0});
+  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) {
+    return st.generation == 2 && st.steps > 20 && st.stepping && st.error.empty();
+  })) << e.status().error;
+  EXPECT_EQ(e.status().superficial_velocity, 2.0);
+}
+
+// A scene that fails at its start (a velocity its gas step cannot follow) is not a dead end: the
+// message says to lower the gas first, and Reset then starts the packed bed at the lower one.
+TEST(ViewEngine, AFailedStartIsRecoveredByResetAtALowerVelocity) {
+  Settings s = testing::view_test_settings();
+  s.inlet.superficial_velocity = 500.0;
+  ViewEngine e(s, ViewEngine::Options{});  // running
+  e.start();
+  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) { return !st.error.empty(); }));
+  const std::string failed = e.status().error;
+  EXPECT_NE(failed.find("Lower the gas, then press Reset"), std::string::npos) << failed;
+  EXPECT_NE(failed.find("keep the gas below 500.00 m/s"), std::string::npos) << failed;
+  // Reset alone starts again at 500 m/s, and fails again: the teacher has not lowered it.
+  e.post({K::reset, 0.0});
+  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) {
+    return st.generation == 1 && !st.error.empty();
+  }));
+  EXPECT_EQ(e.status().superficial_velocity, 500.0);
+  e.post({K::velocity, 2.0});
   e.post({K::reset, 0.0});
   ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) {
     return st.generation == 2 && st.steps > 20 && st.stepping && st.error.empty();
