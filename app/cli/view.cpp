@@ -185,6 +185,8 @@ int view_command(const ViewArgs& a) {
   vo.umf = umf.umf;
   vo.umf_cached = umf.from_cache;
   vo.scene_velocity = s.gas.enabled ? s.inlet.superficial_velocity : 0.0;
+  vo.dt = s.time.dt;
+  vo.lesson = !a.lesson.empty();
   std::unique_ptr<Viewer> viewer;
   try {
     viewer = std::make_unique<Viewer>(engine, vo);

@@ -247,6 +247,8 @@ class HeadlessTarget : public ScriptTarget {
                  l.line);
   }
   double umf() const override { return o_.umf; }
+  double sim_time() const override { return session_.sim().time(); }
+  double sim_step() const override { return session_.sim().settings().time.dt; }
   bool velocity(double u) override { return send(ViewCommand::Kind::velocity, u); }
   bool ideal(bool on) override { return send(ViewCommand::Kind::ideal, on ? 1.0 : 0.0); }
   bool stiffness(double k) override { return send(ViewCommand::Kind::stiffness, k); }

@@ -105,7 +105,7 @@ bool Viewer::bed_is_running() const {
 bool Viewer::script_runs_the_bed() const {
   // A script that runs the bed from one `at T` to the next is running it, even at the instant
   // it stopped there for a screenshot.
-  return !opt_.script.empty() && !script_finished_ && script_wants_running_ && !quit_;
+  return !opt_.script.empty() && !script_finished_ && script_wants_running_ && !quit_ && !held_;
 }
 
 void Viewer::draw_top_block() {
@@ -132,7 +132,7 @@ void Viewer::draw_top_block() {
       else
         start_recording(next_name("recording", record_mp4_ ? ".mp4" : ""));
     } catch (const std::exception& e) {
-      message_ = e.what();
+      say(e.what());
     }
   }
   note_widget("record_button", recording ? "recording" : "idle");
@@ -144,8 +144,11 @@ void Viewer::draw_top_block() {
   }
 
   // Time, what the bed is doing, and its speed in words a class understands.
-  const std::string state = run_state_words(st, script_runs_the_bed());
+  std::string state = run_state_words(st, script_runs_the_bed());
+  if (held_ && !st.stepping) state = "paused: the lesson waits (Run goes on)";
+  if (lesson_over_ && !st.stepping && st.error.empty()) state = "the lesson is over";
   ImGui::Text("t = %.4f s   step %lld", st.time, static_cast<long long>(st.steps));
+  note_widget("time", fmt("%.9g", st.time));
   ImGui::TextUnformatted(state.c_str());
   note_widget("state", state);
   const std::string speed = speed_words(st.sim_s_per_wall_s);
@@ -156,8 +159,9 @@ void Viewer::draw_top_block() {
   ImGui::Separator();
 }
 
-// What went wrong, what to mind, what was written: at the top of the scrolling sections (the
-// block above keeps its height, so the buttons never move under the pointer).
+// What went wrong, what to mind, what was written: in a fixed area at the panel's foot, which
+// scrolls when a message is longer than it, so that no control moves under the pointer when a
+// message comes or goes.
 void Viewer::draw_messages() {
   const EngineStatus& st = status_;
   if (!st.error.empty()) wrapped(kRed, st.error);
@@ -176,21 +180,38 @@ void Viewer::draw_messages() {
       note_widget("overlap_warning", fmt("%.4f", worst));
     }
   }
-  if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+  if (!message_.empty()) {
+    ImGui::TextWrapped("%s", message_.c_str());
+    note_widget("message", message_);
+  }
 }
 
 void Viewer::draw_gas_section() {
   const EngineStatus& st = status_;
   if (!ImGui::CollapsingHeader("Gas and the stages of Fig. 6", ImGuiTreeNodeFlags_DefaultOpen))
     return;
+  // Dragged, the velocity applies as the pointer moves; typed (Ctrl+click), it is clamped to the
+  // range and applies when the field closes (Enter, or a click elsewhere), never digit by digit.
+  if (typed_velocity_ && !ImGui::IsAnyItemActive()) {
+    typed_velocity_ = false;
+    set_velocity(std::clamp(static_cast<double>(velocity_), 0.0,
+                            static_cast<double>(velocity_top_)));
+  }
   if (!ImGui::IsAnyItemActive()) velocity_ = static_cast<float>(st.superficial_velocity);
   ImGui::SetNextItemWidth(-1.0f);
   // A fixed range (set when the window opened): the value under a held pointer stays where it is.
-  if (ImGui::SliderFloat("##U", &velocity_, 0.0f, velocity_top_, "U = %.2f m/s"))
-    set_velocity(static_cast<double>(velocity_));
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Ctrl+click to type a velocity");
-  note_widget("velocity_slider",
-              fmt("0 %.6g", velocity_top_) + fmt(" %.1f", ImGui::GetStyle().GrabMinSize));
+  const bool typing = ImGui::GetIO().WantTextInput;
+  if (ImGui::SliderFloat("##U", &velocity_, 0.0f, velocity_top_, "U = %.2f m/s",
+                         ImGuiSliderFlags_AlwaysClamp)) {
+    if (typing)
+      typed_velocity_ = true;
+    else
+      set_velocity(static_cast<double>(velocity_));
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Ctrl+click to type a velocity, Enter to apply it");
+  note_widget("velocity_slider", fmt("0 %.6g", velocity_top_) +
+                                     fmt(" %.1f", ImGui::GetStyle().GrabMinSize) +
+                                     fmt(" %.6g", st.superficial_velocity));
   {  // Ticks under the slider: U_mf and the scene's own velocity.
     const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
     const float grab = ImGui::GetStyle().GrabMinSize, pad = 2.0f;
@@ -222,7 +243,7 @@ void Viewer::draw_gas_section() {
     }
     ImGui::Dummy(ImVec2(b.x - a.x, 1.2f * h));
   }
-  ImGui::TextDisabled("Ctrl+click the slider to type a velocity");
+  ImGui::TextDisabled("Ctrl+click the slider to type a velocity, Enter to apply it");
   ImGui::Text("jet %.1f m/s (fastest inlet face %.1f m/s)", st.jet_velocity, st.inlet_jet_velocity);
   if (opt_.umf > 0.0) {
     ImGui::TextWrapped("U_mf = %.2f m/s (U = %.2f U_mf), measured on this scene: %s%s.", opt_.umf,
@@ -352,8 +373,10 @@ void Viewer::draw_panel() {
     if (size <= panel_.font) font = f;
   ImGui::PushFont(font);
   draw_top_block();
-  ImGui::BeginChild("sections");
-  draw_messages();
+  // The messages' area: five lines of the panel's font at its foot.
+  const float message_height =
+      5.0f * ImGui::GetTextLineHeightWithSpacing() + 2.0f * ImGui::GetStyle().WindowPadding.y;
+  ImGui::BeginChild("sections", ImVec2(0.0f, -message_height));
   draw_gas_section();
   draw_curve_section();
   draw_bed_section();
@@ -376,6 +399,10 @@ void Viewer::draw_panel() {
       "space run/pause, s step, r reset, c colour\nwheel: zoom the bed under the pointer,\n"
       "drag: pan, right double-click: 1x");
   ImGui::EndChild();
+  ImGui::BeginChild("messages", ImVec2(0.0f, 0.0f), true);
+  draw_messages();
+  ImGui::EndChild();
+  note_widget("messages");
   ImGui::PopFont();
   ImGui::End();
 }

@@ -3,6 +3,7 @@
 // places for tests.
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -42,6 +43,26 @@ void Viewer::write_widgets() {
   }
 }
 
+// What the panel says: a class sees a file's name, not the machine's folders (the terminal
+// keeps the whole path).
+void Viewer::say(const std::string& text) {
+  std::string out;
+  std::size_t k = 0;
+  while (k < text.size()) {
+    const std::size_t end = std::min(text.find(' ', k), text.size());
+    const std::string word = text.substr(k, end - k);
+    if (word.size() > 1 && word[0] == '/') {
+      const std::filesystem::path p(word);
+      out += (p.has_filename() ? p.filename() : p.parent_path().filename()).string();
+    } else {
+      out += word;
+    }
+    if (end < text.size()) out += ' ';
+    k = end + 1;
+  }
+  message_ = out;
+}
+
 std::string Viewer::next_name(const std::string& stem, const std::string& ext) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -66,10 +87,10 @@ void Viewer::write_output(const std::string& path, const std::function<void()>& 
     std::error_code ec;
     if (!parent.empty()) std::filesystem::create_directories(parent, ec);
     write();
-    message_ = "wrote " + path;
+    say("wrote " + path);
     std::printf("wrote %s\n", path.c_str());
   } catch (const std::exception& e) {
-    message_ = e.what();
+    say(e.what());
     if (!opt_.script.empty()) {
       std::fprintf(stderr, "fluidbed: output failed: %s\n", e.what());
       exit_status_ = 4;

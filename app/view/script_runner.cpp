@@ -1,8 +1,16 @@
 #include "view/script_runner.hpp"
 
+#include <cmath>
+
+#include "core/steps.hpp"
+#include "core/text_format.hpp"
 #include "view/presets.hpp"
 
 namespace fluidbed::app {
+
+void ScriptTarget::note(const std::string& text) {
+  std::fprintf(stderr, "fluidbed view: %s\n", text.c_str());
+}
 
 void ScriptRunner::advance(ScriptTarget& target) {
   while (!target.stopped() && next_ < lines_.size()) {
@@ -10,6 +18,15 @@ void ScriptRunner::advance(ScriptTarget& target) {
     const ScriptLine& l = lines_[next_];
     if (l.at >= 0.0 && !at_asked_) {
       at_asked_ = true;
+      // Behind its time: the step nearest T is past (by more than half a step).
+      if (const double dt = target.sim_step(); dt > 0.0) {
+        const double nearest = static_cast<double>(steps_for(l.at, dt)) * dt;
+        if (target.sim_time() > nearest + 0.5 * dt)
+          target.note("script line " + std::to_string(l.line) + ": `at " +
+                      format_number("%g", l.at) + "` came late, at t = " +
+                      format_number("%.4g s", target.sim_time()) +
+                      ": an earlier line (a wait, steps) ran the bed past it");
+      }
       target.run_to(l.at);
       continue;  // busy until the engine is there
     }

@@ -6,6 +6,7 @@
 // method of ScriptTarget here and one case in ScriptRunner::apply; each side then says whether it
 // can carry it out.
 #include <cstddef>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,14 @@ class ScriptTarget {
   // The scene's measured minimum fluidization velocity (m/s; 0: not measured): presets and
   // `velocity F umf` are carried out as velocity(F * umf()).
   virtual double umf() const { return 0.0; }
+
+  // The bed's simulated time and particle step (s; a step of 0: not known): a line's `at T`
+  // that the bed has already passed (an earlier wait or steps ran it on) is carried out at once
+  // and said through note().
+  virtual double sim_time() const { return 0.0; }
+  virtual double sim_step() const { return 0.0; }
+  // A line of the script's log (the default: standard error).
+  virtual void note(const std::string& text);
 
   // The commands, as view/script.hpp lists them.
   virtual bool velocity(double /*m_per_s*/) { return false; }

@@ -41,7 +41,7 @@ Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
     : engine_(engine),
       opt_(std::move(options)),
       look_(opt_.look),
-      capture_([this](const std::string& said) { message_ = said; }),
+      capture_([this](const std::string& said) { say(said); }),
       script_(opt_.script) {
   context_ = render::make_context("glfw", opt_.width, opt_.height);
   renderer_ = std::make_unique<render::Renderer>(*context_, opt_.font);
@@ -165,7 +165,7 @@ void Viewer::take_newest() {
 void Viewer::frame() {
   const auto t_start = Clock::now();
   take_newest();
-  if (!opt_.script.empty() && exit_status_ == 0 &&
+  if (!opt_.script.empty() && !lesson_over_ && exit_status_ == 0 &&
       (!status_.error.empty() || !status_.refusal.empty())) {
     // A script stops at a failure (status 3) or a refused command (bad input, status 2).
     const bool failed = !status_.error.empty();
@@ -339,9 +339,33 @@ void Viewer::handle_scene_input() {
   if (hovered_ || hovered_bubble_) draw_hover_tooltip(hovered_, hovered_bubble_);
 }
 
-// Run or pause as the button says: a bed a script is running pauses, the script with it.
+// Run or pause as the button says. Inside a script that runs the bed (a lesson), Pause holds
+// the script where it is (its `at T` and its wait included) and Run goes on from there; the
+// teacher may step in between.
 void Viewer::toggle_run() {
+  const bool in_script = !opt_.script.empty() && !script_finished_ && !quit_;
+  if (in_script && held_) {
+    held_ = false;
+    if (held_wait_left_) {
+      script_wait_until_ = Clock::now() + *held_wait_left_;
+      held_wait_left_.reset();
+    }
+    if (at_target_ >= 0.0)
+      post({ViewCommand::Kind::run_until, at_target_});
+    else if (script_wait_until_ && script_wants_running_)
+      post({ViewCommand::Kind::run, 0.0});
+    return;
+  }
   const bool pause = bed_is_running();
+  if (in_script && pause && script_runs_the_bed()) {
+    held_ = true;
+    if (script_wait_until_) {
+      held_wait_left_ = std::max(Clock::duration::zero(), *script_wait_until_ - Clock::now());
+      script_wait_until_.reset();
+    }
+    post({ViewCommand::Kind::pause, 0.0});
+    return;
+  }
   if (!opt_.script.empty()) script_wants_running_ = !pause;
   post({pause ? ViewCommand::Kind::pause : ViewCommand::Kind::run, 0.0});
 }
@@ -375,14 +399,17 @@ void Viewer::step_script() {
 
 void Viewer::run_to(double t) {
   post({ViewCommand::Kind::run_until, t});
+  at_target_ = t;
   script_waiting_engine_ = true;
 }
 
 bool Viewer::busy() {
+  if (held_) return true;  // the teacher paused the script
   for (;;) {
     if (script_waiting_engine_) {
       if (!engine_.wait_until_stopped(std::chrono::milliseconds(0))) return true;
       script_waiting_engine_ = false;
+      at_target_ = -1.0;
       take_newest();  // the state where it stopped
     }
     if (!script_wait_until_) break;
@@ -552,7 +579,17 @@ void Viewer::start_recording(const std::string& target) {
 }
 
 bool Viewer::quit() {
-  quit_ = true;
+  if (!opt_.lesson) {
+    quit_ = true;
+    return true;
+  }
+  // A lesson's end in the window: the bed stops, the last picture and the curve stay on the
+  // screen until the window is closed, and the panel's controls go on working.
+  lesson_over_ = true;
+  script_finished_ = true;
+  post({ViewCommand::Kind::pause, 0.0});
+  say("The lesson is over. Its last picture stays until you close the window; Run goes on with "
+      "the bed.");
   return true;
 }
 

@@ -45,6 +45,10 @@ struct ViewerOptions {
   double umf = 0.0;
   bool umf_cached = false;
   double scene_velocity = 0.0;  // m/s, the scene's own (a tick on the slider)
+  double dt = 0.0;              // s, the scene's particle step (a script's `at T` that came late)
+  // The script is a lesson: its `quit` ends the lesson but leaves the window open on its last
+  // picture and curve until the teacher closes it (a --script quits).
+  bool lesson = false;
 };
 
 // What the window measured, printed at the end (the viewer's benchmark).
@@ -118,7 +122,9 @@ class Viewer : private ScriptTarget {
   // ScriptTarget: the script's commands.
   void run_to(double t) override;
   bool busy() override;
-  bool stopped() const override { return quit_; }
+  bool stopped() const override { return quit_ || lesson_over_; }
+  double sim_time() const override { return status_.time; }
+  double sim_step() const override { return opt_.dt; }
   void unsupported(const ScriptLine& line) override;
   double umf() const override { return opt_.umf; }
   bool velocity(double m_per_s) override;
@@ -163,6 +169,7 @@ class Viewer : private ScriptTarget {
   render::FrameLayout layout_;     // of the frame, zoom included
   float velocity_ = 0.0f;          // the slider (m/s)
   float velocity_top_ = 0.0f;      // its range's top (m/s), fixed when the window opens
+  bool typed_velocity_ = false;    // a velocity typed into the slider, applied when it closes
   std::vector<int> keys_;          // presses since the last frame (GLFW key codes)
   std::optional<std::size_t> hovered_;
   const Bubble* hovered_bubble_ = nullptr;  // into status_.bubbles
@@ -180,7 +187,8 @@ class Viewer : private ScriptTarget {
   WindowCapture capture_;
   bool record_mp4_ = true;  // the panel's choice: an MP4, or PNG frames
   int counter_ = 0;
-  std::string message_;  // the last thing written, or a problem
+  std::string message_;  // the last thing written, or a problem (file names without folders)
+  void say(const std::string& text);
 
   // The script.
   ScriptRunner script_;
@@ -188,6 +196,12 @@ class Viewer : private ScriptTarget {
   bool script_finished_ = false;
   std::optional<std::chrono::steady_clock::time_point> script_wait_until_;
   bool script_wants_running_ = true;
+  // Paused by the teacher inside the script (Run / Pause, space): the script waits, its `at T`
+  // and its wall-clock wait resume where they were.
+  bool held_ = false;
+  double at_target_ = -1.0;  // s, the `at T` the engine runs to (< 0: none)
+  std::optional<std::chrono::steady_clock::duration> held_wait_left_;
+  bool lesson_over_ = false;  // a lesson's `quit` in the window
   bool quit_ = false;
   int exit_status_ = 0;
 

@@ -91,8 +91,12 @@ struct BackgroundView {
   pid_t pid = -1;
   std::filesystem::path dir;
 
-  BackgroundView(const std::filesystem::path& folder, const std::string& args) : dir(folder) {
-    const std::string cmd = "FLUIDBED_VIEW_WIDGETS=" + (dir / "widgets.txt").string() + " exec " +
+  // ENV: variable assignments for the viewer ("NAME=value ...").
+  BackgroundView(const std::filesystem::path& folder, const std::string& args,
+                 const std::string& env = "")
+      : dir(folder) {
+    const std::string cmd = env + " FLUIDBED_VIEW_WIDGETS=" + (dir / "widgets.txt").string() +
+                            " exec " +
                             std::string(FLUIDBED_BINARY) + " view " + args + " > " +
                             (dir / "log.txt").string() + " 2>&1";
     pid = ::fork();
@@ -125,6 +129,27 @@ struct BackgroundView {
     while (std::chrono::steady_clock::now() - t0 < std::chrono::duration<double>(seconds)) {
       const auto w = widgets();
       if (auto it = w.find(name); it != w.end() && it->second.size() >= 4) return it->second;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return {};
+  }
+  // Whether the viewer is still running (it has not exited).
+  bool running() {
+    int raw = 0;
+    if (pid <= 0) return false;
+    if (::waitpid(pid, &raw, WNOHANG) != pid) return true;
+    pid = -1;
+    return false;
+  }
+  // The fields of widget NAME once `pred(fields)` holds (up to `seconds`), or empty.
+  template <class P>
+  std::vector<std::string> wait_until(const std::string& name, P pred,
+                                      double seconds = 120.0) const {
+    const auto t0 = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - t0 < std::chrono::duration<double>(seconds)) {
+      const auto w = widgets();
+      if (auto it = w.find(name); it != w.end() && it->second.size() >= 4 && pred(it->second))
+        return it->second;
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     return {};

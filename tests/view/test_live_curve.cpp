@@ -251,6 +251,38 @@ curve out/fig6.csv
 
 // Presets and velocities in U_mf become velocities of the target's U_mf; without one they are
 // not carried out.
+// An `at T` the bed has already passed (a wait ran it on in the window) is carried out at once and
+// said in the log, with the line and the time it came at; one on time or at the step nearest T
+// says nothing.
+TEST(ScriptRunner, AnAtBehindItsTimeIsReported) {
+  struct Target : app::ScriptTarget {
+    double t = 0.0;
+    std::vector<std::string> notes;
+    int captions = 0;
+    void run_to(double) override {}
+    bool busy() override { return false; }
+    bool stopped() const override { return false; }
+    void unsupported(const app::ScriptLine&) override {}
+    double sim_time() const override { return t; }
+    double sim_step() const override { return 0.01; }
+    void note(const std::string& text) override { notes.push_back(text); }
+    bool caption(const std::string&) override { return ++captions > 0; }
+  };
+  Target on_time;
+  on_time.t = 0.104;  // the step nearest 0.1 s is 0.10: within half a step
+  app::ScriptRunner(app::parse_view_script("at 0.1 caption a", "s").lines).advance(on_time);
+  EXPECT_TRUE(on_time.notes.empty());
+  EXPECT_EQ(on_time.captions, 1);
+  Target late;
+  late.t = 1.36;
+  app::ScriptRunner(app::parse_view_script("caption a\nat 1.2 caption b", "s").lines)
+      .advance(late);
+  EXPECT_EQ(late.captions, 2);  // carried out all the same
+  ASSERT_EQ(late.notes.size(), 1u);
+  EXPECT_EQ(late.notes[0], "script line 2: `at 1.2` came late, at t = 1.36 s: an earlier line "
+                           "(a wait, steps) ran the bed past it");
+}
+
 TEST(ScriptRunner, PresetsAreMultiplesOfTheScenesUmf) {
   struct Target : app::ScriptTarget {
     double u = -1.0, measured = 0.0;
