@@ -77,11 +77,15 @@ void Viewer::draw_hover_tooltip(const std::optional<std::size_t>& particle, cons
       ImGui::Text("%s %d: size %.0f mm (equivalent diameter), %.0f x %.0f mm",
                   bubble->slug ? "slug" : "bubble", bubble->id, 1000.0 * bubble->d_eq,
                   1000.0 * bubble->width, 1000.0 * bubble->height);
-      if (bubble->has_velocity)
-        ImGui::Text("rising at %.2f m/s (2D reference 0.5 sqrt(g D_e): %.2f m/s)", bubble->vy,
-                    0.5 * std::sqrt(status_.bubbles->gravity * bubble->d_eq));
+      const BubbleView& v = *status_.bubbles;
+      const auto k = static_cast<std::size_t>(bubble - v.regions.data());
+      const RiseShown r =
+          rise_shown(*bubble, k < v.frames_seen.size() ? v.frames_seen[k] : 0, v.min_track_frames);
+      if (r.shown)
+        ImGui::Text("rising at %.2f m/s (2D reference 0.5 sqrt(g D_e): %.2f m/s)", r.vy,
+                    0.5 * std::sqrt(v.gravity * bubble->d_eq));
       else
-        ImGui::TextDisabled("rise velocity: not measured in this frame (just formed or merged)");
+        ImGui::TextDisabled("%s", r.words.c_str());
     }
     if (particle) ImGui::Separator();
   }

@@ -311,8 +311,7 @@ void Viewer::draw_bed_section() {
     std::string line = fmt("%.1f bubbles formed per s", w.formed_per_s);
     if (std::isfinite(w.mean_d_eq_m) && w.bubble_frames > 0)
       line += fmt(", mean size %.0f mm", 1000.0 * w.mean_d_eq_m);
-    if (std::isfinite(w.mean_rise_velocity_m_s) && w.velocity_samples > 0)
-      line += fmt(", rising at %.2f m/s", w.mean_rise_velocity_m_s);
+    if (const std::string rise = mean_rise_words(w); !rise.empty()) line += ", " + rise;
     line += fmt("; a slug in %.0f %% of the frames", 100.0 * w.slugging_fraction);
     ImGui::TextWrapped("%s", line.c_str());
   } else {

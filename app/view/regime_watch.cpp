@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/steps.hpp"
 #include "run/bubble_recorder.hpp"
@@ -23,6 +24,34 @@ std::string regime_words(const BubbleView& v) {
   std::string w = v.window.regime == Regime::fixed ? "fixed bed" : to_string(v.window.regime);
   if (v.window_s < 0.5 * RegimeWatch::kWindow) w += "?";  // too few frames to be sure
   return w;
+}
+
+RiseShown rise_shown(const Bubble& b, int frames_seen, int min_track_frames) {
+  RiseShown r;
+  if (b.touches_jet) {
+    r.words = "the jet's cavity: no rise velocity";
+  } else if (!b.has_velocity) {
+    r.words = "rise velocity: not measured in this frame (just formed or merged)";
+  } else if (frames_seen < min_track_frames) {
+    r.words = "rise velocity: not yet (tracked over " + std::to_string(frames_seen) + " of the " +
+              std::to_string(min_track_frames) + " frames it needs)";
+  } else if (!(b.vy > 0.0)) {
+    r.words = "not rising: its centre moves down (a void closing, or its roof falling in)";
+  } else {
+    r.shown = true;
+    r.vy = b.vy;
+  }
+  return r;
+}
+
+std::string mean_rise_words(const BubbleStatistics& w) {
+  if (w.velocity_samples <= 0 || !std::isfinite(w.mean_rise_velocity_m_s)) return "";
+  if (w.mean_rise_velocity_m_s > 0.0) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "rising at %.2f m/s", w.mean_rise_velocity_m_s);
+    return buf;
+  }
+  return "the voids did not rise on average (collapsing, not bubbling)";
 }
 
 RegimeWatch::RegimeWatch(const Settings& scene, const Simulation& sim)
@@ -60,6 +89,13 @@ void RegimeWatch::analyse(const Simulation& sim) {
   v->grid = field.grid;
   v->label = f.label;
   v->regions = f.regions;
+  v->min_track_frames = settings_.min_track_frames;
+  const std::vector<int>& seen = analysis_->history().id_frames;
+  v->frames_seen.reserve(f.regions.size());
+  for (const Bubble& b : f.regions)
+    v->frames_seen.push_back(b.id >= 0 && static_cast<std::size_t>(b.id) < seen.size()
+                                 ? seen[static_cast<std::size_t>(b.id)]
+                                 : 0);
   outline_edges(f, field.grid, v->edges);
   v->void_fraction.assign(field.eps.begin(), field.eps.end());
   view_ = std::move(v);

@@ -25,6 +25,8 @@ struct BubbleView {
   FineGrid grid;                     // the analysis' fine grid
   std::vector<int> label;            // per fine cell: an index into regions, or a kCell* value
   std::vector<Bubble> regions;       // the frame's bubbles and jet cavities
+  std::vector<int> frames_seen;      // per region: the frames its id has been seen in so far
+  int min_track_frames = 3;          // frames a track needs before its velocity is shown
   std::vector<float> edges;          // their outlines, x0 y0 x1 y1 (m)
   std::vector<float> void_fraction;  // per fine cell
 
@@ -34,6 +36,22 @@ struct BubbleView {
 
 // "fixed bed", "bubbling", "slugging", "spouting"; with "?" while the window is still short.
 std::string regime_words(const BubbleView& v);
+
+// What the pointer's tooltip says of a region's motion. A rise velocity is shown only for a
+// bubble (not the jet's cavity) tracked cleanly over at least `min_track_frames` frames whose
+// centroid moves up; otherwise the words say why there is none (a velocity of one or two frames
+// is the threshold's flicker, a centroid moving down is a void collapsing or its roof falling).
+struct RiseShown {
+  bool shown = false;
+  double vy = 0.0;    // m/s, when shown (> 0)
+  std::string words;  // for the tooltip
+};
+RiseShown rise_shown(const Bubble& b, int frames_seen, int min_track_frames);
+
+// The panel's words for the bubbles' mean rise velocity over the window: the mean of the lasting
+// tracks' samples when it is upwards, else words that say the voids did not rise on average;
+// empty without samples.
+std::string mean_rise_words(const BubbleStatistics& w);
 
 class RegimeWatch {
  public:

@@ -381,5 +381,40 @@ TEST(BubbleView, FindsTheRegionUnderAPointAndSaysTheRegime) {
   EXPECT_EQ(app::regime_words(v), "fixed bed?");
 }
 
+// The fault: "rising at -0.41 m/s" under the pointer, and a mean rise of -0.09 m/s in the panel.
+// A rise velocity is shown only for a bubble tracked over the frames a track needs, moving up;
+// the jet's cavity, a young track and a falling centre get words instead, never a velocity.
+TEST(BubbleView, OnlyALastingRisingBubbleShowsARiseVelocity) {
+  Bubble b;
+  b.has_velocity = true;
+  b.vy = 0.35;
+  app::RiseShown r = app::rise_shown(b, 5, 3);
+  EXPECT_TRUE(r.shown);
+  EXPECT_EQ(r.vy, 0.35);
+  r = app::rise_shown(b, 2, 3);  // a track too short
+  EXPECT_FALSE(r.shown);
+  EXPECT_NE(r.words.find("tracked over 2 of the 3 frames"), std::string::npos) << r.words;
+  b.vy = -0.41;  // a collapsing void
+  r = app::rise_shown(b, 10, 3);
+  EXPECT_FALSE(r.shown);
+  EXPECT_NE(r.words.find("not rising"), std::string::npos) << r.words;
+  EXPECT_EQ(r.words.find("-0.41"), std::string::npos);
+  b.vy = 0.8;
+  b.touches_jet = true;
+  EXPECT_FALSE(app::rise_shown(b, 10, 3).shown);
+  b.touches_jet = false;
+  b.has_velocity = false;
+  EXPECT_FALSE(app::rise_shown(b, 10, 3).shown);
+  // The panel's mean: upwards, its figure; downwards, words without a negative figure.
+  BubbleStatistics w;
+  EXPECT_EQ(app::mean_rise_words(w), "");
+  w.velocity_samples = 12;
+  w.mean_rise_velocity_m_s = 0.27;
+  EXPECT_EQ(app::mean_rise_words(w), "rising at 0.27 m/s");
+  w.mean_rise_velocity_m_s = -0.09;
+  EXPECT_EQ(app::mean_rise_words(w).find("-0.09"), std::string::npos);
+  EXPECT_NE(app::mean_rise_words(w).find("did not rise"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace fluidbed
