@@ -12,7 +12,7 @@ ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double
     case ColourBy::speed: scale = {0.0, 1.5, 0, "speed (m/s)"}; break;
     case ColourBy::force: scale = {0.0, 0.7, 0, "force (N)"}; break;
     case ColourBy::torque: scale = {0.0, 3e-4, 0, "torque (N m)"}; break;
-    case ColourBy::overlap: scale = {0.0, 0.01, 0, "overlap ratio (-)"}; break;
+    case ColourBy::overlap: scale = {0.0, 0.01, 0, "overlap / radii sum (0.01: 1 %)"}; break;
     case ColourBy::height: {
       double top = 0.0;
       for (double y : s.initial_y) top = std::max(top, y);

@@ -1,5 +1,6 @@
 #pragma once
 // What a frame shows and how (plain settings with defaults; units in the comments).
+#include <cmath>
 #include <string>
 
 #include "render/colour_map.hpp"
@@ -39,6 +40,21 @@ struct RenderSettings {
   std::string bed_label;
   BedZoom zoom;
 };
+
+// The gas arrows' reference speed for a scene blown at `superficial_velocity` (m/s): three times
+// it, rounded up to 1, 2 or 5 x 10^k m/s, so that the arrows of any bed are seen (10 m/s for the
+// paper's 2.8 m/s, 5 m/s for van Wachem's 0.9 m/s) and keep their length while the velocity
+// changes in a run. 10 m/s without gas.
+inline double gas_arrow_reference_for(double superficial_velocity) {
+  if (!(superficial_velocity > 0.0)) return 10.0;
+  const double want = 3.0 * superficial_velocity;
+  double decade = std::pow(10.0, std::floor(std::log10(want)));
+  for (;;) {
+    for (double m : {1.0, 2.0, 5.0})
+      if (m * decade >= want * (1.0 - 1e-12)) return m * decade;
+    decade *= 10.0;
+  }
+}
 
 // Colours by `c` over its own range: a range set for another quantity means nothing for it.
 inline void set_colour_by(RenderSettings& rs, ColourBy c) {

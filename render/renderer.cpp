@@ -127,7 +127,14 @@ void Renderer::Impl::draw_close_up(const Snapshot& s, const BedView& whole, cons
   }
   const std::string what =
       zoom.zoomed ? std::string("zoomed") : format("0 to %.2f m", l.close_up_height);
-  label(what + format(" (\xc3\x97%.1f)", zoom.scale / whole.scale), 0.5f * (panel.x0 + panel.x1),
+  // Zoomed, the factor the zoom set first (what `zoom 3` and the wheel asked for), then the
+  // magnification against the whole bed.
+  const std::string factor =
+      zoom.zoomed && rs.zoom.factor > 1.0
+          ? format(" (\xc3\x97%.1f, ", rs.zoom.factor) +
+                format("\xc3\x97%.1f the whole bed)", zoom.scale / whole.scale)
+          : format(" (\xc3\x97%.1f)", zoom.scale / whole.scale);
+  label(what + factor, 0.5f * (panel.x0 + panel.x1),
         panel.y0 - 0.6f * l.font, l.small, th.faint, Align::centre);
 }
 

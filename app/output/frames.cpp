@@ -369,7 +369,8 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
 
 }  // namespace
 
-FrameOptions frame_options(const OutputArgs& a, const std::string& assets) {
+FrameOptions frame_options(const OutputArgs& a, const std::string& assets,
+                           double scene_velocity) {
   FrameOptions o;
   o.frames = a.frames;
   o.video = a.video;
@@ -396,6 +397,7 @@ FrameOptions frame_options(const OutputArgs& a, const std::string& assets) {
     o.look.range_max = r[1];
   }
   o.look.gas_arrows = a.gas_arrows;
+  o.look.gas_arrow_reference = render::gas_arrow_reference_for(scene_velocity);
   o.look.gas_arrows_coloured = a.gas_arrow_colour;
   o.look.particle_arrows = a.particle_arrows;
   o.look.porosity_background = a.porosity_background;

@@ -146,8 +146,10 @@ class FrameOutput {
 // name them, is gone.
 void remove_video_parts(const std::string& dir);
 
-// The options of `run` as FrameOptions (font from `assets`); InputError names a bad value.
-FrameOptions frame_options(const OutputArgs& a, const std::string& assets);
+// The options of `run` as FrameOptions (font from `assets`), the gas arrows scaled to the scene's
+// superficial velocity (m/s; render::gas_arrow_reference_for); InputError names a bad value.
+FrameOptions frame_options(const OutputArgs& a, const std::string& assets,
+                           double scene_velocity);
 
 // Prints what was written and its cost, and writes DIR/render.json (milliseconds per frame by
 // task, the engine thread's share, the GL version): the renderer's benchmark record.

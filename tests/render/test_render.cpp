@@ -131,6 +131,17 @@ INSTANTIATE_TEST_SUITE_P(
 // A gas arrow of the reference speed (one cell height long) in one cell, centred on the cell's
 // centre: the shaft covers the centre and both halves along the arrow; the head's wide part is on
 // the side it points to, and nothing is drawn across the tail.
+// The fault: the arrows' reference was 10 m/s whatever the scene, so van Wachem's bed (0.9 m/s)
+// showed dots. Three times the scene's velocity, rounded up to 1, 2 or 5 x 10^k.
+TEST(GasArrows, ReferenceFollowsTheScenesVelocity) {
+  EXPECT_DOUBLE_EQ(render::gas_arrow_reference_for(2.8), 10.0);  // the paper's bed, as before
+  EXPECT_DOUBLE_EQ(render::gas_arrow_reference_for(0.9), 5.0);   // van Wachem's
+  EXPECT_DOUBLE_EQ(render::gas_arrow_reference_for(0.3), 1.0);
+  EXPECT_DOUBLE_EQ(render::gas_arrow_reference_for(0.5), 2.0);
+  EXPECT_DOUBLE_EQ(render::gas_arrow_reference_for(20.0), 100.0);
+  EXPECT_DOUBLE_EQ(render::gas_arrow_reference_for(0.0), 10.0);  // no gas
+}
+
 TEST_F(Render, GasArrowOfKnownDirectionCoversTheExpectedPixels) {
   for (const auto& [ux, uy] : {std::pair{10.0, 0.0}, {0.0, 10.0}, {-10.0, 0.0}}) {
     Snapshot s = empty_box();
