@@ -21,9 +21,24 @@ const Bubble* BubbleView::region_at(double x, double y) const {
 }
 
 std::string regime_words(const BubbleView& v) {
-  std::string w = v.window.regime == Regime::fixed ? "fixed bed" : to_string(v.window.regime);
+  std::string w = v.shown == Regime::fixed ? "fixed bed" : to_string(v.shown);
   if (v.window_s < 0.5 * RegimeWatch::kWindow) w += "?";  // too few frames to be sure
   return w;
+}
+
+Regime RegimeLabel::update(double t, Regime raw) {
+  if (!started_) {  // the first frame shows what it sees
+    started_ = true;
+    shown_ = candidate_ = raw;
+    since_ = t;
+    return shown_;
+  }
+  if (raw != candidate_) {
+    candidate_ = raw;
+    since_ = t;
+  }
+  if (candidate_ != shown_ && t - since_ >= kHold - 1e-9) shown_ = candidate_;
+  return shown_;
 }
 
 RiseShown rise_shown(const Bubble& b, int frames_seen, int min_track_frames) {
@@ -62,6 +77,7 @@ RegimeWatch::RegimeWatch(const Settings& scene, const Simulation& sim)
 
 void RegimeWatch::restart(const Simulation& sim) {
   analysis_.reset();
+  label_.restart();
   analyse(sim);
 }
 
@@ -84,6 +100,7 @@ void RegimeWatch::analyse(const Simulation& sim) {
   const double from = std::max(started_, t - kWindow);
   v->window = analysis_->history().summarize(from, t, settings_, geometry_.gravity);
   v->window_s = t - from;
+  v->shown = label_.update(t, v->window.regime);
   v->gravity = geometry_.gravity;
   const VoidFractionField& field = analysis_->void_fraction();
   v->grid = field.grid;

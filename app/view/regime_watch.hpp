@@ -20,6 +20,7 @@ namespace fluidbed::app {
 struct BubbleView {
   double t = 0.0;                    // s, the analysed state
   BubbleStatistics window;           // over the trailing window (up to RegimeWatch::kWindow)
+  Regime shown = Regime::fixed;      // the regime the label shows (RegimeLabel: held 1 s)
   double window_s = 0.0;             // s of frames the statistics cover
   double gravity = 9.81;             // m/s^2, for the 2D rise-velocity reference
   FineGrid grid;                     // the analysis' fine grid
@@ -34,8 +35,27 @@ struct BubbleView {
   const Bubble* region_at(double x, double y) const;
 };
 
-// "fixed bed", "bubbling", "slugging", "spouting"; with "?" while the window is still short.
+// "fixed bed", "bubbling", "slugging", "spouting" (the shown regime); with "?" while the window
+// is still short.
 std::string regime_words(const BubbleView& v);
+
+// The regime the label shows, from the window's regime at each analysed frame: a new regime is
+// shown once it has held for kHold of simulated time without a break, so the label never flips
+// within a second (the paper's bed at 2.8 m/s changes between bubbling and slugging every few
+// frames) and a change that lasts is shown a second after it began.
+class RegimeLabel {
+ public:
+  static constexpr double kHold = 1.0;  // s
+  // The window's regime at simulated time t (s, increasing); returns the regime shown.
+  Regime update(double t, Regime raw);
+  Regime shown() const { return shown_; }
+  void restart() { *this = RegimeLabel(); }
+
+ private:
+  bool started_ = false;
+  Regime shown_ = Regime::fixed, candidate_ = Regime::fixed;
+  double since_ = 0.0;  // s, when the candidate began
+};
 
 // What the pointer's tooltip says of a region's motion. A rise velocity is shown only for a
 // bubble (not the jet's cavity) tracked cleanly over at least `min_track_frames` frames whose
@@ -76,6 +96,7 @@ class RegimeWatch {
   BedGeometry geometry_;
   std::int64_t every_ = 1;  // steps between frames
   std::unique_ptr<BubbleAnalysis> analysis_;
+  RegimeLabel label_;
   double started_ = 0.0;  // s, the analysis' first frame
   std::shared_ptr<const BubbleView> view_;
 };
