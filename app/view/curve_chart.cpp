@@ -53,7 +53,7 @@ chart::Chart curve_chart(const CurveState& c, double u_max) {
   ch.hlines.push_back({c.weight_per_area, "bed weight / area", {90, 90, 90}, true, 1.5});
   if (c.umf.ok) {
     char label[64];
-    std::snprintf(label, sizeof label, "Umf = %.2f m/s", c.umf.umf);
+    std::snprintf(label, sizeof label, "U_mf of this curve, rough: %.2f m/s", c.umf.umf);
     ch.vlines.push_back({c.umf.umf, label, chart::palette(1), true, 1.5});
   }
   return ch;

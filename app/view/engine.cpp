@@ -180,6 +180,7 @@ void ViewEngine::publish() {
     status_.error = error_;
     status_.refusal = refusal_;
     status_.curve = session_.curve();  // a few dozen points at most
+    status_.held_at_top = session_.held_at_top();
     status_.bubbles = session_.bubbles();
   }
   status_changed_.notify_all();

@@ -60,6 +60,7 @@ struct EngineStatus {
   // until Reset, which leaves the run/pause switch as it is (a failure does not touch it).
   std::string error;
   std::string refusal;  // the last command refused (a stiffness the step cannot take), one line
+  int held_at_top = 0;  // spheres the gas holds against the top screen (ViewSession::held_at_top)
   CurveState curve;     // the live Fig. 6
   std::shared_ptr<const BubbleView> bubbles;  // the last bubble analysis (regime, outlines)
 };

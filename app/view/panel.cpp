@@ -180,6 +180,14 @@ void Viewer::draw_messages() {
       note_widget("overlap_warning", fmt("%.4f", worst));
     }
   }
+  if (st.held_at_top > 0) {
+    wrapped(kOrange,
+            std::to_string(st.held_at_top) +
+                " spheres have been held against the top screen for over a second: the gas has "
+                "blown the bed out, and dp is the screen's push, not the bed's weight. Lower the "
+                "gas and press Reset to start again from the packed bed.");
+    note_widget("blown_out", std::to_string(st.held_at_top));
+  }
   if (!message_.empty()) {
     ImGui::TextWrapped("%s", message_.c_str());
     note_widget("message", message_);
@@ -274,10 +282,19 @@ void Viewer::draw_curve_section() {
   const CurveState& c = status_.curve;
   draw_curve_plot(11.0f * ImGui::GetFontSize());
   ImGui::TextWrapped("%s", describe_phase(c).c_str());
-  if (c.umf.ok)
-    ImGui::TextWrapped("U_mf from the decreasing branch: %.2f m/s (the sweep's fit)", c.umf.umf);
-  else
+  if (c.umf.ok) {
+    // A rough figure beside the scene's measured one: a few points of a short average each.
+    std::size_t points = 0;
+    if (!c.branches.empty() && !c.branches.back().increasing)
+      points = c.branches.back().points.size();
+    ImGui::TextWrapped(
+        "U_mf from this curve's way down: %.2f m/s, rough (%zu points, each the mean of %.1f s; "
+        "`fluidbed sweep` averages longer). The slider's tick and the presets use %.2f m/s, "
+        "measured above.",
+        c.umf.umf, points, c.window, opt_.umf);
+  } else {
     ImGui::TextDisabled("U_mf: lower U in steps through the bed's U_mf");
+  }
   // Settling time and averaging window, simulated seconds.
   const float field = 4.0f * ImGui::GetFontSize();
   ImGui::SetNextItemWidth(field);

@@ -174,6 +174,8 @@ void ViewSession::apply(const ViewCommand& c) {
       if (model_.sim().gas() && u != held_velocity()) model_.set_velocity(u);
       failed_velocity_ = -1.0;
       steps_at_velocity_ = 0;
+      at_top_since_ = -1.0;
+      held_at_top_ = 0;
       regime_.restart(model_.sim());  // tracking starts again with the bed
       curve_.clear(model_.sim().time(), held_velocity());
       next_sample_ = model_.sim().time() + sample_interval_;
@@ -214,9 +216,27 @@ std::optional<PlotSample> ViewSession::step() {
   if (sim.time() + 0.5 * sim.settings().time.dt < next_sample_) return std::nullopt;
   next_sample_ += sample_interval_;
   if (sim.has_gas()) curve_.sample(sim.time(), sim.pressure_drop());
+  watch_the_top();
   const PlotSample s{sim.time(), sim.pressure_drop(), interval_overlap_};
   interval_overlap_ = 0.0;
   return s;
+}
+
+void ViewSession::watch_the_top() {
+  const Simulation& sim = model_.sim();
+  const Settings& s = sim.settings();
+  held_at_top_ = 0;
+  if (!s.domain.top_wall) return;
+  const Particles& p = sim.dem().particles();
+  int touching = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.y[i] + 1.05 * p.radius[i] >= s.domain.height) ++touching;
+  if (touching == 0) {
+    at_top_since_ = -1.0;
+    return;
+  }
+  if (at_top_since_ < 0.0) at_top_since_ = sim.time();
+  if (sim.time() - at_top_since_ >= kHeldAtTop - 1e-9) held_at_top_ = touching;
 }
 
 void ViewSession::snapshot(Snapshot& snap) const {

@@ -130,6 +130,11 @@ class ViewSession {
   // velocity unless the velocity is changed first.
   void failed() { failed_velocity_ = held_velocity(); }
   static constexpr int kSafeSteps = 10;
+  // Spheres the gas holds against the top screen (a scene with domain.top_wall): how many touch
+  // it now when some have touched it without a break for kHeldAtTop of simulated time, else 0.
+  // A bed blown against the screen is not fluidized: its dp is the screen's push.
+  int held_at_top() const { return held_at_top_; }
+  static constexpr double kHeldAtTop = 1.0;  // s
 
  private:
   ViewModel model_;
@@ -145,6 +150,9 @@ class ViewSession {
   double safe_velocity_ = -1.0;    // m/s, see safe_velocity()
   double failed_velocity_ = -1.0;  // m/s, the velocity of the last failure (< 0: none since reset)
   int steps_at_velocity_ = 0;      // steps since the velocity was last set
+  double at_top_since_ = -1.0;     // s, since when spheres touch the top screen (< 0: none now)
+  int held_at_top_ = 0;
+  void watch_the_top();
 };
 
 }  // namespace fluidbed::app

@@ -373,12 +373,40 @@ TEST(BubbleView, FindsTheRegionUnderAPointAndSaysTheRegime) {
   EXPECT_EQ(v.region_at(0.005, 0.005), nullptr);  // freeboard
   EXPECT_EQ(v.region_at(0.009, 0.001), nullptr);  // outside the grid
   EXPECT_EQ(v.region_at(-0.001, 0.001), nullptr);
-  v.window.regime = Regime::slugging;
+  v.shown = Regime::slugging;
   v.window_s = 1.0;
   EXPECT_EQ(app::regime_words(v), "slugging");
-  v.window.regime = Regime::fixed;
+  v.shown = Regime::fixed;
   v.window_s = 0.2;
   EXPECT_EQ(app::regime_words(v), "fixed bed?");
+}
+
+// The fault: the label changed between bubbling and slugging every few seconds at 2.8 m/s, and
+// within a second. On a recorded sequence (a frame every 0.01 s): a flicker between the two never
+// reaches the label; a change that lasts is shown one second after it began, not before.
+TEST(RegimeLabel, HoldsASecondAndShowsAChangeThatLasts) {
+  app::RegimeLabel label;
+  double t = 0.0;
+  const auto run = [&](double until, auto raw_at) {
+    Regime shown = label.shown();
+    for (; t < until - 1e-9; t += 0.01) shown = label.update(t, raw_at(t));
+    return shown;
+  };
+  EXPECT_EQ(run(2.0, [](double) { return Regime::bubbling; }), Regime::bubbling);
+  // 2 s of flicker: slugging and bubbling in turns of 0.3 s.
+  Regime worst = Regime::bubbling;
+  for (double end = 2.3; end < 4.0 + 1e-9; end += 0.3) {
+    const Regime r = static_cast<int>(std::lround(end / 0.3)) % 2 == 0 ? Regime::slugging
+                                                                        : Regime::bubbling;
+    if (run(end, [r](double) { return r; }) != Regime::bubbling) worst = Regime::slugging;
+  }
+  EXPECT_EQ(worst, Regime::bubbling) << "the label followed a flicker";
+  // Slugging from t = 4.0 on: still bubbling at 4.9 s, slugging from 5.0 s.
+  const double start = t;
+  EXPECT_EQ(run(start + 0.9, [](double) { return Regime::slugging; }), Regime::bubbling);
+  EXPECT_EQ(run(start + 1.05, [](double) { return Regime::slugging; }), Regime::slugging);
+  label.restart();
+  EXPECT_EQ(label.update(0.0, Regime::fixed), Regime::fixed);  // a reset shows what it sees
 }
 
 // The fault: "rising at -0.41 m/s" under the pointer, and a mean rise of -0.09 m/s in the panel.
