@@ -259,6 +259,8 @@ Settings drop_scene(double y);
 // field.
 inline std::string num(double v) { return table_number(v); }
 inline std::string fmt(const char* format, double v) { return format_number(format, v); }
+// A value as a scene file writes it so that it reads back bit for bit (17 significant digits).
+inline std::string exact(double v) { return fmt("%.17g", v); }
 inline std::string csv_text(std::string s) { return csv_field(std::move(s)); }
 
 void write_text(const std::string& path, const std::string& text);

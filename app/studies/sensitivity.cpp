@@ -48,8 +48,6 @@ std::string trim(const std::string& s) {
   return s.substr(a, s.find_last_not_of(" \t") - a + 1);
 }
 
-std::string exact(double v) { return fmt("%.17g", v); }
-
 }  // namespace
 
 Variation parse_variation(const std::string& text) {
@@ -342,8 +340,10 @@ Measured measure(const Options& o) {
   for (Point& pt : m.pts) {
     for (const Figure& f : m.figs) {
       std::vector<double> v;
-      for (const PointRun& r : pt.runs)
-        if (r.ok && std::isfinite(f.of(r))) v.push_back(f.of(r));
+      for (const PointRun& r : pt.runs) {
+        if (!r.ok) continue;
+        if (const double x = f.of(r); std::isfinite(x)) v.push_back(x);
+      }
       pt.fig.push_back(sample_statistics(v));
     }
     pt.regime = regime_words(pt.runs);

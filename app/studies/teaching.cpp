@@ -84,8 +84,6 @@ struct Teaching {
   int scene_point = -1;  // the point with teaching.toml's settings, if measured
 };
 
-std::string exact(double v) { return fmt("%.17g", v); }
-
 // dt = the pair contact duration (reduced mass m / 2) / 3.15, to 4 significant digits as
 // teaching.toml writes it: so the chosen candidate steps exactly as the scene does.
 double teaching_dt(double kappa) {

@@ -91,3 +91,18 @@ inline BubbleFrame one_frame(const Particles& p, const BubbleSettings& s = {},
 }
 
 }  // namespace fluidbed::testing::bubble_bed
+
+// The names both bubble test files use (test_bubbles.cpp, test_bubble_detection.cpp).
+using fluidbed::BedGeometry;
+using fluidbed::Bubble;
+using fluidbed::BubbleAnalysis;
+using fluidbed::BubbleEvent;
+using fluidbed::BubbleFrame;
+using fluidbed::BubbleHistory;
+using fluidbed::BubbleRow;
+using fluidbed::BubbleSettings;
+using fluidbed::Particles;
+using fluidbed::Regime;
+using fluidbed::testing::hex_bed;
+using fluidbed::testing::Hole;
+using namespace fluidbed::testing::bubble_bed;

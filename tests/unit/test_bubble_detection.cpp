@@ -10,19 +10,6 @@
 #include "bubble_test_bed.hpp"
 #include "scene/lattice.hpp"
 
-using fluidbed::BedGeometry;
-using fluidbed::Bubble;
-using fluidbed::BubbleAnalysis;
-using fluidbed::BubbleEvent;
-using fluidbed::BubbleFrame;
-using fluidbed::BubbleHistory;
-using fluidbed::BubbleRow;
-using fluidbed::BubbleSettings;
-using fluidbed::Particles;
-using fluidbed::Regime;
-using fluidbed::testing::hex_bed;
-using fluidbed::testing::Hole;
-using namespace fluidbed::testing::bubble_bed;
 
 TEST(BubbleDetection, PackedBedHasNoBubbles) {
   // The hexagonal layer, and the paper's looser start (rows one diameter apart, eps 0.48).

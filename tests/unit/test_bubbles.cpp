@@ -15,19 +15,6 @@
 #include "core/errors.hpp"
 #include "scene/lattice.hpp"
 
-using fluidbed::BedGeometry;
-using fluidbed::Bubble;
-using fluidbed::BubbleAnalysis;
-using fluidbed::BubbleEvent;
-using fluidbed::BubbleFrame;
-using fluidbed::BubbleHistory;
-using fluidbed::BubbleRow;
-using fluidbed::BubbleSettings;
-using fluidbed::Particles;
-using fluidbed::Regime;
-using fluidbed::testing::hex_bed;
-using fluidbed::testing::Hole;
-using namespace fluidbed::testing::bubble_bed;
 
 TEST(BubbleStatistics, MeansOverBubbleFramesAndThePyleHarrisonReference) {
   // A hole of D_e 20 mm (removal radius 12 mm) rising 6.93 mm per 10 ms from t = 0.01 s; averaging
