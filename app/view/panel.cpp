@@ -287,11 +287,12 @@ void Viewer::draw_curve_section() {
     std::size_t points = 0;
     if (!c.branches.empty() && !c.branches.back().increasing)
       points = c.branches.back().points.size();
-    ImGui::TextWrapped(
-        "U_mf from this curve's way down: %.2f m/s, rough (%zu points, each the mean of %.1f s; "
-        "`fluidbed sweep` averages longer). The slider's tick and the presets use %.2f m/s, "
-        "measured above.",
-        c.umf.umf, points, c.window, opt_.umf);
+    std::string text = fmt("U_mf from this curve's way down: %.2f m/s, rough (", c.umf.umf) +
+                       std::to_string(points) +
+                       fmt(" points, each the mean of %.1f s; a sweep averages longer).", c.window);
+    if (opt_.umf > 0.0)
+      text += fmt(" The slider's tick and the presets use %.2f m/s, measured above.", opt_.umf);
+    ImGui::TextWrapped("%s", text.c_str());
   } else {
     ImGui::TextDisabled("U_mf: lower U in steps through the bed's U_mf");
   }

@@ -183,7 +183,11 @@ void ViewSession::apply(const ViewCommand& c) {
       break;
     }
     case K::velocity:
-      if (std::max(0.0, c.value) != held_velocity()) steps_at_velocity_ = 0;
+      if (std::max(0.0, c.value) != held_velocity()) {
+        // The velocity left behind ran long enough without failing: the safe one.
+        if (steps_at_velocity_ >= kSafeSteps) safe_velocity_ = held_velocity();
+        steps_at_velocity_ = 0;
+      }
       model_.set_velocity(c.value);
       curve_.velocity(sim.time(), held_velocity());
       break;
@@ -210,7 +214,7 @@ void ViewSession::apply(const ViewCommand& c) {
 std::optional<PlotSample> ViewSession::step() {
   Simulation& sim = model_.sim();
   sim.step();
-  if (++steps_at_velocity_ >= kSafeSteps) safe_velocity_ = held_velocity();
+  ++steps_at_velocity_;
   regime_.after_step(sim);
   interval_overlap_ = std::max(interval_overlap_, sim.dem().diagnostics().max_overlap_ratio);
   if (sim.time() + 0.5 * sim.settings().time.dt < next_sample_) return std::nullopt;

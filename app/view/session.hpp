@@ -123,8 +123,8 @@ class ViewSession {
   // The last bubble analysis (the regime, the outlines; null before the first).
   std::shared_ptr<const BubbleView> bubbles() const { return regime_.view(); }
   double held_velocity() const;  // m/s, the inlet setting (0 without gas)
-  // The last velocity the bed ran at for kSafeSteps steps without failing (m/s, < 0: none yet):
-  // after a failure at the velocity held now, Reset returns to it.
+  // The last velocity the bed ran at for kSafeSteps steps or more before the velocity was changed
+  // (m/s, < 0: none yet): after a failure at the velocity held now, Reset returns to it.
   double safe_velocity() const { return safe_velocity_; }
   // The step just taken failed (SimulationFailure): Reset starts from the packed bed at the safe
   // velocity unless the velocity is changed first.
