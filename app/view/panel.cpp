@@ -269,6 +269,23 @@ void Viewer::draw_gas_section() {
         ImGui::SetTooltip("%.2f U_mf = %.2f m/s: %s", p.umf_multiple, u, p.what);
       note_widget((std::string("preset_") + p.name).c_str(), fmt("%.6g", u));
     }
+    // Fig. 6 from the start in one action: the packed bed at the fixed-bed preset, running, the
+    // curve empty (not while a script runs the bed).
+    if (const Preset* fixed = find_preset("fixed")) {
+      const bool scripted = script_runs_the_bed() || held_;
+      const double u = fixed->umf_multiple * opt_.umf;
+      if (ImGui::Button("Fig. 6 from the packed bed", ImVec2(-1.0f, 0.0f)) && !scripted) {
+        set_velocity(u);  // Reset keeps it: the packed bed at this velocity
+        post({ViewCommand::Kind::reset, 0.0});
+        if (!opt_.script.empty()) script_wants_running_ = true;
+        post({ViewCommand::Kind::run, 0.0});
+      }
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Back to the packed bed at %.2f m/s (%.1f U_mf) and run: then raise U a "
+                          "step at a time through U_mf, and lower it again",
+                          u, fixed->umf_multiple);
+      note_widget("fig6_button", fmt("%.6g", u));
+    }
   }
   if (ImGui::Button(st.ideal ? "Back to the scene's contacts" : "Ideal case (eta = 0, gamma = 0)"))
     post({ViewCommand::Kind::ideal, st.ideal ? 0.0 : 1.0});

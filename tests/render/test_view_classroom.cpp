@@ -262,7 +262,7 @@ TEST(ViewWindow, FailedStartWrapsItsMessageAndResetRecoversAtALowerVelocity) {
 // the run failed on the gas CFL number; a message ("wrote /absolute/path/...") pushed every
 // control down and showed the machine's folders. The controls stay at their pixels when a message
 // comes, the message names the file only, and a typed velocity applies on Enter, clamped to the
-// slider's range.
+// slider's range. And a teacher's request: Fig. 6 from the packed bed in one action.
 TEST(ViewWindow, MessagesMoveNothingAndATypedVelocityIsClampedOnEnter) {
   REQUIRE_XDOTOOL();
   const auto dir = fresh_dir("typed");
@@ -301,6 +301,21 @@ TEST(ViewWindow, MessagesMoveNothingAndATypedVelocityIsClampedOnEnter) {
   }, 30);
   ASSERT_FALSE(clamped.empty()) << v.log();
   EXPECT_NEAR(number(clamped, 7), top, 1e-5 * top);
+  // "Fig. 6 from the packed bed" in one action: the packed bed at the fixed-bed preset, running.
+  const auto fig6 = v.widgets().at("fig6_button");
+  ASSERT_GE(fig6.size(), 5u);
+  const double t_before = number(v.widgets().at("time"), 4);
+  ASSERT_GT(t_before, 0.0);
+  ASSERT_TRUE(xdotool("mousemove " + middle_of(fig6)));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_TRUE(xdotool("click 1"));
+  const double u_fixed = number(fig6, 4);
+  const auto restarted = v.wait_until("velocity_slider", [&](const auto& w) {
+    const auto all = v.widgets();
+    return w.size() >= 8 && std::abs(number(w, 7) - u_fixed) < 1e-5 * u_fixed &&
+           number(all.at("time"), 4) < t_before && all.at("state").at(4) == "running";
+  }, 30);
+  EXPECT_FALSE(restarted.empty()) << v.log();
 }
 
 }  // namespace
