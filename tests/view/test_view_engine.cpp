@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <thread>
 
 #include "core/errors.hpp"
@@ -434,6 +435,12 @@ TEST(ViewEngine, AFailedStartIsRecoveredByResetAtALowerVelocity) {
 // its spheres are held against the screen, said after a second of it; at 2 m/s never; Reset
 // clears it.
 TEST(ViewSession, ABedHeldAgainstTheTopScreenIsSaidAfterASecond) {
+#if defined(__SANITIZE_THREAD__)
+  // One thread stepping a session for two simulated seconds: 55 s under the thread sanitizer,
+  // which this binary runs for the engine's threads; the Release and address-sanitizer runs
+  // cover it.
+  GTEST_SKIP() << "single-threaded; not run under the thread sanitizer";
+#endif
   Settings s = testing::view_test_settings();
   s.domain.top_wall = true;
   s.domain.height = 0.07;
@@ -445,12 +452,12 @@ TEST(ViewSession, ABedHeldAgainstTheTopScreenIsSaidAfterASecond) {
     return -1.0;
   };
   app::ViewSession calm(s);
-  EXPECT_LT(first_held(calm, 2.5), 0.0);
+  EXPECT_LT(first_held(calm, 1.2), 0.0);
   s.inlet.superficial_velocity = 5.0;
   app::ViewSession blown(s);
-  const double t = first_held(blown, 2.5);
+  const double t = first_held(blown, 2.0);
   EXPECT_GE(t, app::ViewSession::kHeldAtTop);
-  EXPECT_LT(t, 2.5);
+  EXPECT_LT(t, 2.0);
   blown.apply({K::reset, 0.0});
   EXPECT_EQ(blown.held_at_top(), 0);
 }
