@@ -56,8 +56,7 @@ RunEnd run_into(const fs::path& dir, const Settings& s, double until,
   if (!montage.empty()) {
     FrameOptions fo;
     fo.montage = montage;
-    fo.look.gas_arrow_reference =
-        render::gas_arrow_reference_for(s.gas.enabled ? s.inlet.superficial_velocity : 0.0);
+    fo.look.gas_arrow_reference = gas_arrow_reference(s);
     fo.font = asset_dir() + "/fonts/DejaVuSans.ttf";
     job.outputs.push_back(std::make_unique<PictureOutput>(dir.string(), fo));
   }

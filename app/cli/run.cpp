@@ -336,8 +336,7 @@ int run_command(const RunArgs& given) {
   RunJob job = run_job(a, s, "# the scene as run, every value resolved\n");
   // Frames, video, montage, VTK: snapshots at exact times, drawn and written by a worker thread.
   PictureOutput* pictures = nullptr;
-  if (const FrameOptions fo = frame_options(a.output, asset_dir(), s.gas.enabled ? s.inlet.superficial_velocity : 0.0);
-      fo.any()) {
+  if (const FrameOptions fo = frame_options(a.output, asset_dir(), s); fo.any()) {
     job.outputs.push_back(std::make_unique<PictureOutput>(out, fo));
     pictures = static_cast<PictureOutput*>(job.outputs.back().get());
   }

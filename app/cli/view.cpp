@@ -130,8 +130,7 @@ int view_command(const ViewArgs& a) {
   refuse_unsafe_scene(s);
   s.threads = a.run_like.threads;
   check_script_against(script, s, script_path);
-  FrameOptions fo = frame_options(with_run_names(a.output), asset_dir(),
-                                  s.gas.enabled ? s.inlet.superficial_velocity : 0.0);
+  FrameOptions fo = frame_options(with_run_names(a.output), asset_dir(), s);
   // A lesson's video in slow motion (x 2 at 25 frames per second), time to read its captions.
   if (!a.lesson.empty() && !a.frame_interval_given) fo.interval = 0.02;
   const bool window = has_display();

@@ -369,8 +369,12 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
 
 }  // namespace
 
-FrameOptions frame_options(const OutputArgs& a, const std::string& assets,
-                           double scene_velocity) {
+double gas_arrow_reference(const Settings& scene) {
+  return render::gas_arrow_reference_for(scene.gas.enabled ? scene.inlet.superficial_velocity
+                                                           : 0.0);
+}
+
+FrameOptions frame_options(const OutputArgs& a, const std::string& assets, const Settings& scene) {
   FrameOptions o;
   o.frames = a.frames;
   o.video = a.video;
@@ -397,7 +401,7 @@ FrameOptions frame_options(const OutputArgs& a, const std::string& assets,
     o.look.range_max = r[1];
   }
   o.look.gas_arrows = a.gas_arrows;
-  o.look.gas_arrow_reference = render::gas_arrow_reference_for(scene_velocity);
+  o.look.gas_arrow_reference = gas_arrow_reference(scene);
   o.look.gas_arrows_coloured = a.gas_arrow_colour;
   o.look.particle_arrows = a.particle_arrows;
   o.look.porosity_background = a.porosity_background;

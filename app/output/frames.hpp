@@ -146,10 +146,13 @@ class FrameOutput {
 // name them, is gone.
 void remove_video_parts(const std::string& dir);
 
-// The options of `run` as FrameOptions (font from `assets`), the gas arrows scaled to the scene's
-// superficial velocity (m/s; render::gas_arrow_reference_for); InputError names a bad value.
-FrameOptions frame_options(const OutputArgs& a, const std::string& assets,
-                           double scene_velocity);
+// The gas arrows' reference speed for `scene` (render::gas_arrow_reference_for its superficial
+// velocity; 10 m/s without gas).
+double gas_arrow_reference(const Settings& scene);
+
+// The options of `run` as FrameOptions (font from `assets`), the gas arrows scaled to `scene`
+// (gas_arrow_reference); InputError names a bad value.
+FrameOptions frame_options(const OutputArgs& a, const std::string& assets, const Settings& scene);
 
 // Prints what was written and its cost, and writes DIR/render.json (milliseconds per frame by
 // task, the engine thread's share, the GL version): the renderer's benchmark record.

@@ -375,6 +375,13 @@ bool wait_for(const ViewEngine& e, F done) {
   return true;
 }
 
+// After reset number `generation`: the bed steps again, past 20 steps, with no error.
+bool runs_again_after_reset(const ViewEngine& e, std::uint64_t generation) {
+  return wait_for(e, [generation](const app::EngineStatus& st) {
+    return st.generation == generation && st.steps > 20 && st.stepping && st.error.empty();
+  });
+}
+
 // A failure says what to do in the viewer (not "reduce the time step"), and Reset after it does
 // what Reset does during a run: the bed runs again from the start (the run switch is untouched).
 TEST(ViewEngine, FailureSaysWhatToDoAndResetResumesAsDuringARun) {
@@ -399,9 +406,7 @@ TEST(ViewEngine, FailureSaysWhatToDoAndResetResumesAsDuringARun) {
   EXPECT_EQ(failed.error.find("reduce the time step"), std::string::npos) << failed.error;
   // Reset after the failure: the same as during a run.
   e.post({K::reset, 0.0});
-  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) {
-    return st.generation == 2 && st.steps > 20 && st.stepping && st.error.empty();
-  })) << e.status().error;
+  ASSERT_TRUE(runs_again_after_reset(e, 2)) << e.status().error;
   EXPECT_EQ(e.status().superficial_velocity, 2.0);
 }
 
@@ -424,9 +429,7 @@ TEST(ViewEngine, AFailedStartIsRecoveredByResetAtALowerVelocity) {
   EXPECT_EQ(e.status().superficial_velocity, 500.0);
   e.post({K::velocity, 2.0});
   e.post({K::reset, 0.0});
-  ASSERT_TRUE(wait_for(e, [](const app::EngineStatus& st) {
-    return st.generation == 2 && st.steps > 20 && st.stepping && st.error.empty();
-  })) << e.status().error;
+  ASSERT_TRUE(runs_again_after_reset(e, 2)) << e.status().error;
   EXPECT_EQ(e.status().superficial_velocity, 2.0);
 }
 
