@@ -1,7 +1,9 @@
 #include "run/checkpoint.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -197,6 +199,30 @@ void remove_checkpoint(const std::string& run_dir) {
       leftovers.push_back(e.path());
   }
   for (const fs::path& p : leftovers) fs::remove_all(p, ec);
+  remove_partial_files(run_dir);
+}
+
+void remove_partial_files(const std::string& run_dir) {
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const fs::path& dir : {fs::path(run_dir), fs::path(run_dir) / "frames",
+                             fs::path(run_dir) / "vtk"}) {
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      if (!e.is_regular_file(ec)) continue;
+      const std::string name = e.path().filename().string();
+      const std::size_t at = name.rfind(".partial.");
+      if (at == std::string::npos || at == 0) continue;
+      const std::string digits = name.substr(at + 9);
+      if (digits.empty() || digits.size() > 9 ||
+          digits.find_first_not_of("0123456789") != std::string::npos)
+        continue;
+      const auto pid = static_cast<pid_t>(std::stol(digits));
+      // A live process's (this one's, or another's writing beside it) is being written.
+      if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+      stale.push_back(e.path());
+    }
+  }
+  for (const fs::path& p : stale) fs::remove(p, ec);
 }
 
 }  // namespace fluidbed

@@ -54,7 +54,11 @@ void restore_recorder(const Checkpoint& c, RunRecorder& recorder);
 // set aside by a process killed while it replaced it).
 bool has_checkpoint(const std::string& run_dir);
 // Removes RUN_DIR's checkpoint (the run finished), with any left half-written or set aside by a
-// process killed while it wrote one.
+// process killed while it wrote one, and the half-written files of such a process (below).
 void remove_checkpoint(const std::string& run_dir);
+// Removes the files a killed process left half-written in RUN_DIR, its frames/ and its vtk/
+// ("NAME.partial.PID", as write_file_atomically and render::write_png name them) when process
+// PID no longer exists.
+void remove_partial_files(const std::string& run_dir);
 
 }  // namespace fluidbed

@@ -3,8 +3,11 @@
 // resumed, it ends with the files of the run that was never stopped: the same frames, VTK series,
 // montage, plots, bubbles.csv, mixing.csv and timeseries.csv byte for byte, the same summary
 // numbers, and a video with the same number of frames (joined from its parts without encoding
-// again, so its bytes differ).
+// again, so its bytes differ). What the killed process left half-written goes.
 #include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -70,8 +73,11 @@ int video_frames(const fs::path& video) {
 // The resumed folder against the reference: the same files, the same bytes but for what measures
 // the machine (summary's wall times, render.json, status.json) and the video's encoding.
 void expect_same_outputs(const fs::path& ref, const fs::path& run) {
-  const std::set<std::string> names = files_under(ref);
-  EXPECT_EQ(files_under(run), names);
+  const std::set<std::string> names = files_under(ref), got = files_under(run);
+  for (const std::string& name : got)
+    EXPECT_TRUE(names.count(name)) << run / name << " is not in the unstopped run's folder";
+  for (const std::string& name : names)
+    EXPECT_TRUE(got.count(name)) << run / name << " is missing";
   for (const std::string& name : names) {
     if (fs::is_directory(ref / name)) continue;
     if (name == "summary.json") {
@@ -139,7 +145,20 @@ TEST(RunResumeOutputs, StoppedAndResumedRunsWriteTheUnstoppedRunsFiles) {
   // the finished run removes it.
   fs::create_directories(kill / "checkpoint.partial.1");
   write_file(kill / "checkpoint.partial.1" / "state.bin", "half");
+  // And a frame it was writing (named after a process that has ended); one of a live process's
+  // stays.
+  const pid_t ended = ::fork();
+  if (ended == 0) ::_exit(0);
+  ASSERT_GT(ended, 0);
+  ::waitpid(ended, nullptr, 0);
+  const fs::path half = kill / "frames" / ("frame_000019.png.partial." + std::to_string(ended));
+  const fs::path live = kill / "frames" / ("frame_000019.png.partial." + std::to_string(::getpid()));
+  write_file(half, "half");
+  write_file(live, "half");
   const CommandResult finished = run_fluidbed("run --resume \"" + kill.string() + "\"", "resume-k");
   ASSERT_EQ(finished.status, 0) << finished.err;
+  EXPECT_FALSE(fs::exists(half));
+  EXPECT_TRUE(fs::exists(live));
+  fs::remove(live);
   expect_same_outputs(ref, kill);
 }
