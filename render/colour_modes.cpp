@@ -9,26 +9,28 @@ ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double
                          int height_bands) {
   ColourScale scale;
   switch (c) {
-    case ColourBy::speed: scale = {0.0, 1.5, 0, "speed (m/s)"}; break;
-    case ColourBy::force: scale = {0.0, 0.7, 0, "force (N)"}; break;
-    case ColourBy::torque: scale = {0.0, 3e-4, 0, "torque (N m)"}; break;
-    case ColourBy::overlap: scale = {0.0, 0.01, 0, "overlap / radii sum (0.01: 1 %)"}; break;
+    case ColourBy::speed: scale = {0.0, 1.5, 0, false, "speed (m/s)"}; break;
+    case ColourBy::force: scale = {7e-5, 0.7, 0, true, "force (N)"}; break;
+    case ColourBy::torque: scale = {3e-8, 3e-4, 0, true, "torque (N m)"}; break;
+    case ColourBy::overlap: scale = {0.0, 0.01, 0, false, "overlap / radii sum (0.01: 1 %)"}; break;
     case ColourBy::height: {
       double top = 0.0;
       for (double y : s.initial_y) top = std::max(top, y);
-      scale = {0.0, top > 0.0 ? top : std::max(s.height, 1e-3), std::max(height_bands, 1),
+      scale = {0.0, top > 0.0 ? top : std::max(s.height, 1e-3), std::max(height_bands, 1), false,
                "initial height (m)"};
       break;
     }
     case ColourBy::depth:
-      scale = {0.0, s.thickness > 0.0 ? s.thickness : 1e-3, 0, "depth from the front (m)"};
+      scale = {0.0, s.thickness > 0.0 ? s.thickness : 1e-3, 0, false, "depth from the front (m)"};
       break;
-    case ColourBy::fixed: scale = {0.0, 1.0, 0, ""}; break;
+    case ColourBy::fixed: scale = {0.0, 1.0, 0, false, ""}; break;
   }
   if (range_min < range_max) {
     scale.min = range_min;
     scale.max = range_max;
+    scale.log = scale.log && range_min > 0.0;
   }
+  if (scale.log) scale.title.insert(scale.title.size() - 1, ", log scale");
   return scale;
 }
 
@@ -54,7 +56,9 @@ double depth_shade(const Snapshot& s, std::size_t i) {
 }
 
 double scale_position(const ColourScale& scale, double value) {
-  double t = (value - scale.min) / (scale.max - scale.min);
+  double t = scale.log ? (value > scale.min ? std::log(value / scale.min) : 0.0) /
+                             std::log(scale.max / scale.min)
+                       : (value - scale.min) / (scale.max - scale.min);
   if (!(t > 0.0)) t = 0.0;
   if (t > 1.0) t = 1.0;
   if (scale.bands > 0) {
@@ -62,6 +66,11 @@ double scale_position(const ColourScale& scale, double value) {
     t = (std::min(std::floor(t * n), n - 1.0) + 0.5) / n;
   }
   return t;
+}
+
+double scale_value(const ColourScale& scale, double t) {
+  return scale.log ? scale.min * std::pow(scale.max / scale.min, t)
+                   : scale.min + t * (scale.max - scale.min);
 }
 
 }  // namespace fluidbed::render

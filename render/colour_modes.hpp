@@ -13,13 +13,19 @@ namespace fluidbed::render {
 struct ColourScale {
   double min = 0.0, max = 1.0;  // value range mapped onto the colour map (unit of the quantity)
   int bands = 0;                // > 0: quantised into this many bands (height)
+  bool log = false;             // positions by log(value) (0 < min); at or below min: the first colour
   std::string title;            // "speed (m/s)"
 };
 
-// The default range for a quantity: speed 0-1.5 m/s, force 0-0.7 N and torque 0-3e-4 N m (the
-// legends of the paper's Fig. 14), overlap 0-1 %, height from 0 to the highest initial centre,
-// depth from the front wall (0) to the back wall (the slab's thickness).
-// `min < max` in `range` overrides the default.
+// The default range for a quantity: speed 0-1.5 m/s, overlap 0-1 %, height from 0 to the highest
+// initial centre, depth from the front wall (0) to the back wall (the slab's thickness).
+// Force and torque span decades in a bed (in the paper's bed at 0.6 s, a resting sphere carries
+// about its weight, 9e-4 N, and an impact up to 0.7 N; half the spheres touch nothing and have no
+// torque), so a linear range drew 96 % of the spheres in its darkest tenth: they are on a
+// logarithmic scale of four decades up to the top of the paper's Fig. 14 legends, force
+// 7e-5-0.7 N and torque 3e-8-3e-4 N m.
+// `min < max` in `range` overrides the default; for force and torque it stays logarithmic when
+// min > 0 and is linear from min <= 0.
 ColourScale colour_scale(ColourBy c, const Snapshot& s, double range_min, double range_max,
                          int height_bands);
 
@@ -35,5 +41,7 @@ double depth_shade(const Snapshot& s, std::size_t i);
 
 // Where `value` falls on the scale, in [0, 1] (banded scales give the band's centre).
 double scale_position(const ColourScale& scale, double value);
+// The value at position t in [0, 1] of an unbanded scale (the inverse of scale_position).
+double scale_value(const ColourScale& scale, double t);
 
 }  // namespace fluidbed::render

@@ -25,16 +25,17 @@ void Renderer::Impl::colour_bar(const Rect& bar, ColourMap map, const ColourScal
     }
   }
   frame(over, {bar.x0 - 1, bar.y0 - 1, bar.x1 + 1, bar.y1 + 1}, 1.0f, th.faint);
-  // About five ticks, as the charts choose and label them (render/ticks.hpp); a shared power
-  // of ten of the labels ("×10⁻⁶") follows the title.
-  const Ticks ticks = linear_ticks(scale.min, scale.max, 5);
+  // About five ticks, as the charts choose and label them (render/ticks.hpp), decades on a
+  // logarithmic scale; a shared power of ten of the labels ("×10⁻⁶") follows the title.
+  const Ticks ticks =
+      scale.log ? log_ticks(scale.min, scale.max, 5) : linear_ticks(scale.min, scale.max, 5);
   label(ticks.multiplier.empty() ? scale.title : scale.title + "  " + ticks.multiplier, bar.x0,
         bar.y0 - 0.6f * l.font, l.font, th.text);
   const float tick_len = 0.35f * l.font;
   const float lift = 0.5f * atlas(l.small).font->ascent();
   for (std::size_t k = 0; k < ticks.major.size(); ++k) {
     const double v = ticks.major[k];
-    const float y = bar.y1 - f((v - scale.min) / (scale.max - scale.min)) * bar.height();
+    const float y = bar.y1 - f(scale_position(scale, v)) * bar.height();
     rect(over, {bar.x1 + 1, y - 0.5f, bar.x1 + 1 + tick_len, y + 0.5f}, th.text);
     label(ticks.labels[k], bar.x1 + 1.6f * tick_len, y + lift, l.small, th.text);
   }
@@ -77,7 +78,7 @@ void Renderer::Impl::draw_info(const Snapshot& s, const FrameLayout& l, const Re
     if (rs.gas_arrows_coloured) {
       below += 1.4f * l.font;
       const Rect bar{x, below, x + l.font, below + 0.6f * l.colour_bar.height()};
-      colour_bar(bar, ColourMap::inferno, {0.0, rs.gas_colour_max, 0, "gas speed (m/s)"}, l, th);
+      colour_bar(bar, ColourMap::inferno, {0.0, rs.gas_colour_max, 0, false, "gas speed (m/s)"}, l, th);
       below = bar.y1 + 1.6f * l.font;
     }
     const auto len = f(s.height / s.ny * bed.scale);

@@ -37,7 +37,7 @@ void colour_bar(const render::ColourScale& scale) {
   constexpr int kSteps = 48;
   for (int k = 0; k < kSteps; ++k) {
     const double t0 = static_cast<double>(k) / kSteps, t1 = static_cast<double>(k + 1) / kSteps;
-    const double value = scale.min + (t0 + 0.5 / kSteps) * (scale.max - scale.min);
+    const double value = render::scale_value(scale, t0 + 0.5 / kSteps);
     const ImU32 c = to_imgui(
         render::colour_at(render::ColourMap::viridis, render::scale_position(scale, value)));
     dl->AddRectFilled(ImVec2(p.x + static_cast<float>(t0) * w, p.y),

@@ -4,6 +4,7 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
@@ -118,8 +119,10 @@ INSTANTIATE_TEST_SUITE_P(
     Modes, RenderModes,
     ::testing::Values(
         ModeCase{ColourBy::speed, {0.04, 0.05, 0.01, 0.6, 0.8}, 1.0 / 1.5},
-        ModeCase{ColourBy::force, {0.04, 0.05, 0.01, 0, 0, 0.21, 0.28}, 0.5},
-        ModeCase{ColourBy::torque, {0.04, 0.05, 0.01, 0, 0, 0, 0, -0.75e-4}, 0.25},
+        // Force and torque on four decades: 0.35 N = 5000 x 7e-5 N, 7.5e-5 N m = 2500 x 3e-8.
+        ModeCase{ColourBy::force, {0.04, 0.05, 0.01, 0, 0, 0.21, 0.28}, std::log10(5000.0) / 4},
+        ModeCase{ColourBy::torque, {0.04, 0.05, 0.01, 0, 0, 0, 0, -0.75e-4},
+                 std::log10(2500.0) / 4},
         ModeCase{ColourBy::overlap, {0.04, 0.05, 0.01, 0, 0, 0, 0, 0, 0.0075}, 0.75},
         // Height 0.03 of 0.08 m in 8 bands: band 3, drawn at its centre 3.5 / 8.
         ModeCase{ColourBy::height, {0.04, 0.05, 0.01, 0, 0, 0, 0, 0, 0, 0.03}, 3.5 / 8.0},
@@ -430,6 +433,45 @@ TEST(ColourModes, MagnitudesCountTheSlabsPartsInAThickBed) {
   EXPECT_DOUBLE_EQ(particle_value(ColourBy::speed, s, 0), 13.0);
   EXPECT_DOUBLE_EQ(particle_value(ColourBy::force, s, 0), 1.3);
   EXPECT_NEAR(particle_value(ColourBy::torque, s, 0), 13e-5, 1e-19);
+}
+
+// The fault: force and torque on a linear range drew nearly every sphere of the paper's bed in
+// the darkest colour (0.7 N is set by a few impacts; a resting sphere carries about its weight,
+// 9e-4 N). On four decades a resting sphere sits a quarter up the map, an impact near its top,
+// and a sphere without contact or torque at the bottom; a range from 0 given by hand is linear.
+TEST(ColourModes, ForceAndTorqueAreLogarithmicOverFourDecades) {
+  const Snapshot s = empty_box();
+  const ColourScale force = colour_scale(ColourBy::force, s, 0.0, 0.0, 8);
+  EXPECT_TRUE(force.log);
+  EXPECT_EQ(force.title, "force (N, log scale)");
+  const double weight = 2700.0 * 9.81 * 4.0 / 3.0 * M_PI * std::pow(0.002, 3);  // 8.9e-4 N
+  EXPECT_NEAR(scale_position(force, weight), std::log10(weight / 7e-5) / 4.0, 1e-12);
+  EXPECT_GT(scale_position(force, weight), 0.25);
+  EXPECT_NEAR(scale_position(force, 0.07), 0.75, 1e-12);
+  EXPECT_DOUBLE_EQ(scale_position(force, 0.7), 1.0);
+  EXPECT_DOUBLE_EQ(scale_position(force, 0.0), 0.0);
+  EXPECT_DOUBLE_EQ(scale_position(force, 1e-9), 0.0);
+  EXPECT_DOUBLE_EQ(scale_position(force, 5.0), 1.0);
+  for (double t : {0.0, 0.3, 0.5, 1.0})
+    EXPECT_NEAR(scale_position(force, scale_value(force, t)), t, 1e-12);
+
+  const ColourScale torque = colour_scale(ColourBy::torque, s, 0.0, 0.0, 8);
+  EXPECT_TRUE(torque.log);
+  EXPECT_EQ(torque.title, "torque (N m, log scale)");
+  EXPECT_NEAR(scale_position(torque, 3e-6), 0.5, 1e-12);
+
+  // A range set by hand: logarithmic above zero, linear from zero.
+  const ColourScale above = colour_scale(ColourBy::force, s, 1e-3, 1.0, 8);
+  EXPECT_TRUE(above.log);
+  EXPECT_NEAR(scale_position(above, 0.1), 2.0 / 3.0, 1e-12);
+  const ColourScale from_zero = colour_scale(ColourBy::force, s, 0.0, 0.7, 8);
+  EXPECT_FALSE(from_zero.log);
+  EXPECT_EQ(from_zero.title, "force (N)");
+  EXPECT_DOUBLE_EQ(scale_position(from_zero, 0.35), 0.5);
+  EXPECT_DOUBLE_EQ(scale_value(from_zero, 0.5), 0.35);
+  // Other quantities stay linear.
+  EXPECT_FALSE(colour_scale(ColourBy::speed, s, 0.0, 0.0, 8).log);
+  EXPECT_FALSE(colour_scale(ColourBy::speed, s, 0.5, 1.0, 8).log);
 }
 
 TEST(RenderBackends, UnknownNameListsTheKnownOnes) {
