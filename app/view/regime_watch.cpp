@@ -21,7 +21,9 @@ const Bubble* BubbleView::region_at(double x, double y) const {
 }
 
 std::string regime_words(const BubbleView& v) {
-  std::string w = v.shown == Regime::fixed ? "fixed bed" : to_string(v.shown);
+  std::string w = v.shown == Regime::fixed      ? "fixed bed"
+                  : v.shown == Regime::expanded ? "expanded bed"
+                                                : to_string(v.shown);
   if (v.window_s < 0.5 * RegimeWatch::kWindow) w += "?";  // too few frames to be sure
   return w;
 }
@@ -89,9 +91,14 @@ bool RegimeWatch::after_step(const Simulation& sim) {
 
 void RegimeWatch::analyse(const Simulation& sim) {
   const double t = sim.time();
-  if (analysis_ && t - started_ > kRestartAfter) analysis_.reset();
+  double reference = -1.0;  // a timed restart keeps the bed's starting surface
+  if (analysis_ && t - started_ > kRestartAfter) {
+    reference = analysis_->history().reference_surface;
+    analysis_.reset();
+  }
   if (!analysis_) {
     analysis_ = std::make_unique<BubbleAnalysis>(settings_, geometry_);
+    analysis_->set_reference_surface(reference);
     started_ = t;
   }
   const BubbleFrame& f = analysis_->analyse(t, sim.dem().particles());

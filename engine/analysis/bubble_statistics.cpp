@@ -25,7 +25,10 @@ Regime classify_regime(const BubbleStatistics& st, const BubbleSettings& s) {
   if (st.frames == 0) return Regime::fixed;
   if (st.spouting_fraction >= s.spouting_min_fraction) return Regime::spouting;
   if (st.slugging_fraction >= s.slugging_min_fraction) return Regime::slugging;
-  if (st.formed == 0 && st.slugging_fraction == 0.0) return Regime::fixed;
+  if (st.formed == 0 && st.slugging_fraction == 0.0)
+    return st.bed_rise_m >= s.expanded_rise && st.median_particle_speed_m_s >= s.expanded_speed
+               ? Regime::expanded
+               : Regime::fixed;
   return Regime::bubbling;
 }
 
@@ -34,6 +37,17 @@ void BubbleHistory::add(const BubbleFrame& frame, double dt) {
   f.t = frame.t;
   f.dt = dt;
   f.spout = frame.spout;
+  f.median_speed = frame.median_speed;
+  double sum = 0.0;
+  int columns = 0;
+  for (double y : frame.surface) {
+    if (y > 0.0) {
+      sum += y;
+      ++columns;
+    }
+  }
+  f.surface = columns > 0 ? sum / columns : 0.0;
+  if (reference_surface < 0.0) reference_surface = f.surface;
   const auto sample = [&](const Bubble& b, bool ended) {
     Sample q;
     q.t = frame.t;
@@ -68,11 +82,14 @@ BubbleStatistics BubbleHistory::summarize(double t_from, double t_to, const Bubb
   BubbleStatistics st;
   st.window_start = t_from;
   int slug_frames = 0, spout_frames = 0, jet_frames = 0;
+  double sum_surface = 0.0, sum_speed = 0.0;
   for (const Frame& f : frames) {
     if (!(f.dt > 0.0) || !(f.t > t_from) || f.t > t_to) continue;
     ++st.frames;
     st.window_end = f.t;
     st.duration += f.dt;
+    sum_surface += f.surface;
+    sum_speed += f.median_speed;
     slug_frames += f.slug ? 1 : 0;
     spout_frames += f.spout ? 1 : 0;
     jet_frames += f.jet_cavity ? 1 : 0;
@@ -149,6 +166,10 @@ BubbleStatistics BubbleHistory::summarize(double t_from, double t_to, const Bubb
   st.slugging_fraction = st.frames > 0 ? slug_frames / n : 0.0;
   st.spouting_fraction = st.frames > 0 ? spout_frames / n : 0.0;
   st.jet_cavity_fraction = st.frames > 0 ? jet_frames / n : 0.0;
+  st.bed_rise_m = st.frames > 0 && reference_surface >= 0.0
+                      ? sum_surface / n - reference_surface
+                      : 0.0;
+  st.median_particle_speed_m_s = st.frames > 0 ? sum_speed / n : 0.0;
   st.regime = classify_regime(st, s);
   return st;
 }
@@ -186,6 +207,8 @@ nlohmann::json to_json(const BubbleStatistics& st) {
   j["slugging_fraction"] = st.slugging_fraction;
   j["spouting_fraction"] = st.spouting_fraction;
   j["jet_cavity_fraction"] = st.jet_cavity_fraction;
+  j["bed_rise_m"] = st.bed_rise_m;
+  j["median_particle_speed_m_s"] = st.median_particle_speed_m_s;
   j["regime"] = to_string(st.regime);
   return j;
 }

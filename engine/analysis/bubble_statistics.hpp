@@ -16,8 +16,15 @@
 //   spouting  - the jet cavity reaches the freeboard in at least spouting_min_fraction of the
 //               frames (default 0.5: most of the time);
 //   slugging  - a slug is present in at least slugging_min_fraction of the frames (default 0.25);
-//   fixed     - no bubble was formed and no slug seen in the window (the bed does not bubble:
-//               below minimum fluidization a stable jet cavity may stand, but nothing detaches);
+//   expanded  - no bubble was formed and no slug seen in the window, but the bed moves and has
+//               risen: its surface (the mean over the columns holding bed) stands at least
+//               expanded_rise above the run's first frame's, and the particles' median speed is
+//               at least expanded_speed, both over the window (a bed fluidized without bubbles,
+//               as the teaching bed without damping and friction at 2.8 m/s: 50 mm higher, its
+//               median sphere at 0.17 m/s);
+//   fixed     - no bubble was formed and no slug seen in the window, and the bed has not both
+//               risen and moved (below minimum fluidization a stable jet cavity may stand, but
+//               nothing detaches);
 //   bubbling  - otherwise.
 #include <ostream>
 #include <vector>
@@ -56,6 +63,8 @@ struct BubbleStatistics {
   double slugging_fraction = 0.0;    // -, frames with a slug
   double spouting_fraction = 0.0;    // -, frames with the jet cavity open to the freeboard
   double jet_cavity_fraction = 0.0;  // -, frames with a jet cavity
+  double bed_rise_m = 0.0;  // m, the window's mean bed surface above the reference_surface
+  double median_particle_speed_m_s = 0.0;  // m/s, the frames' median particle speed, averaged
   Regime regime = Regime::fixed;
 };
 
@@ -70,10 +79,12 @@ struct BubbleHistory {
     bool slug = false;        // a slug present
     bool spout = false;       // the jet cavity reaches the freeboard
     bool jet_cavity = false;  // a jet cavity present
+    double surface = 0.0;       // m, mean bed surface over the columns holding bed (0: none)
+    double median_speed = 0.0;  // m/s, the particles' median speed
 
     template <class Archive>
     void fields(Archive& a) {
-      a(t, dt, slug, spout, jet_cavity);
+      a(t, dt, slug, spout, jet_cavity, surface, median_speed);
     }
   };
   struct Sample {    // one bubble in one frame, or one that ended there
@@ -96,6 +107,9 @@ struct BubbleHistory {
   std::vector<Frame> frames;    // in time order
   std::vector<Sample> samples;  // in time order
   std::vector<int> id_frames;   // frames each id was seen in, by id
+  // m, the bed surface the rise is measured from: the first frame's (< 0 before it), or one
+  // carried over from an earlier history of the same run.
+  double reference_surface = -1.0;
 
   // Appends a tracked frame (jet cavities count in the frame flags only).
   void add(const BubbleFrame& frame, double dt);
@@ -107,8 +121,8 @@ struct BubbleHistory {
   // Its state, for a checkpoint (core/binary_io.hpp).
   template <class Archive>
   void fields(Archive& a) {
-    a.tag("FLBHIS02", "bubble history");
-    a(frames, samples, id_frames);
+    a.tag("FLBHIS03", "bubble history");
+    a(frames, samples, id_frames, reference_surface);
   }
   void save(BinarySink& out) const { out(*this); }
   void restore(BinarySource& in) { in(*this); }

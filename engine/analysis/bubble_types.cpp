@@ -34,6 +34,8 @@ BubbleSettings default_bubble_settings(double particle_diameter) {
   s.min_diameter = 2.0 * particle_diameter;
   s.cell_size = 0.5 * particle_diameter;
   s.window = 2.5 * particle_diameter;
+  s.expanded_rise = particle_diameter;
+  s.expanded_speed = particle_diameter / 1.0;  // a diameter a second
   return s;
 }
 
@@ -68,7 +70,8 @@ const char* to_string(BubbleEvent e) {
 }
 
 const char* to_string(Regime r) {
-  static constexpr const char* kNames[] = {"fixed", "bubbling", "slugging", "spouting"};
+  static constexpr const char* kNames[] = {"fixed", "bubbling", "slugging", "spouting",
+                                                   "expanded"};
   const auto k = static_cast<std::size_t>(r);
   return k < std::size(kNames) ? kNames[k] : "";
 }

@@ -43,12 +43,17 @@ struct BubbleSettings {
   // Regime rule (see analysis/bubble_statistics.hpp).
   double slugging_min_fraction = 0.25;  // -, of the frames with a slug
   double spouting_min_fraction = 0.5;   // -, of the frames with the jet open to the freeboard
+  // A bed without bubbles is expanded, not fixed, when its surface stands at least expanded_rise
+  // above the first frame's and its median particle moves at least expanded_speed (one diameter
+  // and one diameter a second).
+  double expanded_rise = 0.004;   // m
+  double expanded_speed = 0.004;  // m/s
   // Dense regions smaller than this share of all dense cells are splashes, not the bed.
   double bed_min_fraction = 0.05;  // -
 };
 
-// min_diameter = 2 d, cell_size = d / 2 and window = 2.5 d for particles of diameter d; the rest
-// as above.
+// min_diameter = 2 d, cell_size = d / 2, window = 2.5 d, expanded_rise = d and expanded_speed =
+// d per second for particles of diameter d; the rest as above.
 BubbleSettings default_bubble_settings(double particle_diameter);
 
 // Throws InputError with one line naming the key (`bubbles.threshold`, `bubbles.interval`,
@@ -109,10 +114,11 @@ struct BubbleFrame {
   std::vector<int> label;       // per fine cell (FineGrid::index): see kCell*
   std::vector<double> surface;  // m, bed surface per fine column (0: no bed there)
   bool spout = false;           // the jet cavity reaches the freeboard
+  double median_speed = 0.0;    // m/s, the particles' median speed
 };
 
-enum class Regime : std::uint8_t { fixed, bubbling, slugging, spouting };
-const char* to_string(Regime r);  // "fixed", "bubbling", "slugging", "spouting"
+enum class Regime : std::uint8_t { fixed, bubbling, slugging, spouting, expanded };
+const char* to_string(Regime r);  // "fixed", "bubbling", "slugging", "spouting", "expanded"
 
 // One row of bubbles.csv: one per bubble per frame (jet cavities excluded), and one per bubble
 // that ended in the frame (erupted or vanished: its last geometry and velocity).

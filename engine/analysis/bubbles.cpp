@@ -2,12 +2,29 @@
 // tracking and the history, in that order.
 #include "analysis/bubbles.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
 namespace fluidbed {
 
 namespace {
+// The median of the particles' speeds (in three dimensions in a thick bed); `scratch` is reused.
+double median_speed(const Particles& p, std::vector<double>& scratch) {
+  const std::size_t n = p.size();
+  if (n == 0) return 0.0;
+  scratch.resize(n);
+  const bool depth = p.vz.size() == n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = depth ? p.vz[i] : 0.0;
+    scratch[i] = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + w * w);
+  }
+  const auto mid = scratch.begin() + static_cast<std::ptrdiff_t>(n / 2);
+  std::nth_element(scratch.begin(), mid, scratch.end());
+  return *mid;
+}
+
 const BubbleSettings& checked(const BubbleSettings& s, const BedGeometry& g) {
   validate(s, g);
   return s;
@@ -28,6 +45,7 @@ const BubbleFrame& BubbleAnalysis::analyse(double t, const Particles& p) {
     throw std::invalid_argument("BubbleAnalysis::analyse: time must increase");
   compute_void_fraction(p, field_);
   frame_.t = t;
+  frame_.median_speed = median_speed(p, speeds_);
   detector_.detect(field_, frame_);
   tracker_.track(frame_);
   history_.add(frame_, started_ ? t - last_t_ : 0.0);

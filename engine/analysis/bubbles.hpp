@@ -36,6 +36,9 @@ class BubbleAnalysis {
   const VoidFractionField& void_fraction() const { return field_; }
   const BubbleFrame& frame() const { return frame_; }  // the last analysed
   const BubbleHistory& history() const { return history_; }
+  // Measures the bed's rise from `surface` (m; see BubbleHistory::reference_surface): an analysis
+  // started again in the same run keeps the first one's.
+  void set_reference_surface(double surface) { history_.reference_surface = surface; }
   // Rows of the last frame (bubbles.csv).
   void append_rows(std::vector<BubbleRow>& rows) const { fluidbed::append_rows(frame_, rows); }
   // Over the frames after averaging_start (to the last frame).
@@ -50,7 +53,7 @@ class BubbleAnalysis {
   // with the same settings and geometry that has not analysed yet.
   template <class Archive>
   void fields(Archive& a) {
-    a.tag("FLBBUB02", "bubble analysis");
+    a.tag("FLBBUB03", "bubble analysis");
     a(tracker_, started_, last_t_, history_);
   }
   void save(BinarySink& out) const { out(*this); }
@@ -64,6 +67,7 @@ class BubbleAnalysis {
   BubbleTracker tracker_;
   BubbleFrame frame_;
   BubbleHistory history_;
+  std::vector<double> speeds_;  // median_speed's scratch
   double last_t_ = 0.0;
   bool started_ = false;
 };

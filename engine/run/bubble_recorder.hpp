@@ -60,7 +60,7 @@ class BubbleRecorder {
     const std::int64_t every = every_;
     a(analysis_, every_, bubbles_now_, regime_now_, rows_, mixing_);
     a.check(every_ == every, "bubble analysis interval");
-    a.check(regime_now_ <= Regime::spouting, "bubble regime");
+    a.check(regime_now_ <= Regime::expanded, "bubble regime");
   }
   void save(BinarySink& out) const { out(*this); }
   void restore(BinarySource& in) { in(*this); }

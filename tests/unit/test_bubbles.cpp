@@ -52,6 +52,46 @@ TEST(BubbleStatistics, MeansOverBubbleFramesAndThePyleHarrisonReference) {
   EXPECT_EQ(e["formed_per_s"], 0.0);
 }
 
+// The fault: the regime label said "fixed bed" over the expanded, moving bed of the ideal-vs-real
+// lesson. A bed without bubbles that has risen at least a diameter (4 mm) above its first frame
+// and whose median sphere moves at least a diameter a second is `expanded`; risen but still (a
+// bed left loose by a higher velocity), or moving in place, it is `fixed`.
+TEST(BubbleStatistics, ABedThatMovesAndHasRisenWithoutBubblesIsExpanded) {
+  const auto run = [](double top, double speed) {
+    BubbleAnalysis a({}, {});
+    a.analyse(0.01, hex_bed(kWidth, kTop));  // the packed bed: the reference surface
+    for (int k = 1; k <= 20; ++k) {
+      fluidbed::Particles p = hex_bed(kWidth, top);
+      for (std::size_t i = 0; i < p.size(); ++i) {  // half the spheres at `speed`, half faster
+        p.vx[i] = i % 2 == 0 ? 0.6 * speed : 3.0 * speed;
+        p.vy[i] = i % 2 == 0 ? 0.8 * speed : 0.0;
+      }
+      a.analyse(0.01 * (k + 1), p);
+      EXPECT_NEAR(a.frame().median_speed, p.size() % 2 == 0 ? 3.0 * speed : speed, 1e-12);
+    }
+    return a.statistics(0.0);
+  };
+  const double d = 0.004;
+  const fluidbed::BubbleStatistics risen = run(kTop + 5 * kRow, 0.05);
+  EXPECT_EQ(risen.formed, 0);
+  EXPECT_NEAR(risen.bed_rise_m, 5 * kRow, 0.5 * d);
+  EXPECT_EQ(risen.regime, Regime::expanded);
+  EXPECT_EQ(fluidbed::to_json(risen)["regime"], "expanded");
+  EXPECT_GT(fluidbed::to_json(risen)["median_particle_speed_m_s"].get<double>(), 0.05 - 1e-12);
+  EXPECT_EQ(run(kTop + 5 * kRow, 0.0).regime, Regime::fixed);  // loose but still
+  EXPECT_EQ(run(kTop + 5 * kRow, 0.002).regime, Regime::fixed);  // slower than d per second
+  EXPECT_EQ(run(kTop, 0.05).regime, Regime::fixed);               // moving in place
+  EXPECT_STREQ(fluidbed::to_string(Regime::expanded), "expanded");
+
+  // An analysis started again in the same run measures from the first one's surface.
+  BubbleAnalysis first({}, {});
+  first.analyse(0.01, hex_bed(kWidth, kTop - 4 * kRow));
+  BubbleAnalysis again({}, {});
+  again.set_reference_surface(first.history().reference_surface);
+  for (int k = 0; k < 5; ++k) again.analyse(0.01 * (k + 1), hex_bed(kWidth, kTop));
+  EXPECT_NEAR(again.statistics(0.0).bed_rise_m, 4 * kRow, 0.5 * d);
+}
+
 TEST(BubbleStatistics, RegimeRule) {
   // 100 frames of 10 ms after a first one; each case sets what the rule looks at: bubbles formed
   // (ids seen in 3 frames), frames with a slug, frames with the jet open to the freeboard.
@@ -271,7 +311,7 @@ TEST(BubbleAnalysis, CheckpointOfAnotherLayoutOrGridIsRefusedInOneLine) {
   BubbleAnalysis fresh({}, {});
   EXPECT_EQ(refusal(fresh, older),
             "run/checkpoint.bin: state file is written by another version of fluidbed (bubble "
-            "analysis 01, this one reads 02): run it again from its start");
+            "analysis 01, this one reads 03): run it again from its start");
   // The layout before the tags (a four-byte magic number, then the tracker's).
   std::string legacy = saved.str();
   legacy.replace(0, 8, std::string("AHUB1BUB"));
