@@ -99,6 +99,13 @@ FrameLayout frame_layout(const Snapshot& s, int width, int height, double close_
   return l;
 }
 
+bool keeps_close_up(const Snapshot& s, int width, int height, double close_up, bool caption_band) {
+  if (!(close_up > 0.0 && close_up < 1.0)) return false;
+  const double both = frame_layout(s, width, height, close_up, caption_band).beds.front().scale;
+  const double alone = frame_layout(s, width, height, 0.0, caption_band).beds.front().scale;
+  return both >= kCloseUpKeep * alone;
+}
+
 FrameLayout montage_layout(const Snapshot& s, int panels, int height) {
   FrameLayout l = vertical_metrics(0, height, 3.0f);
   const float top = l.info.y0 + l.wall, bottom = l.info.y1 - l.wall;

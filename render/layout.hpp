@@ -54,6 +54,12 @@ struct FrameLayout {
 // viewer and lessons keep it always, so the beds do not move when a caption comes or goes).
 FrameLayout frame_layout(const Snapshot& s, int width, int height, double close_up = 0.0,
                          bool caption_band = false);
+// Whether a window's frame keeps the close-up: a frame too narrow for both panels at the bed's
+// full height shrinks them alike, and the close-up is kept while the whole bed keeps at least
+// kCloseUpKeep of the height it has alone (below that the beds shrink towards slivers; at 2/3 a
+// 1000 x 650 window keeps it, its beds 75 % tall, where 0.8 dropped it).
+inline constexpr double kCloseUpKeep = 2.0 / 3.0;
+bool keeps_close_up(const Snapshot& s, int width, int height, double close_up, bool caption_band);
 // Magnifies one bed panel of `l` (see BedZoom); nothing for a zoom of 1 or a bed out of range.
 void zoom_bed(FrameLayout& l, const BedZoom& z);
 // Several snapshots side by side (`panels` of them, same domain), each `height` px tall with its

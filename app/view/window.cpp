@@ -203,7 +203,7 @@ void Viewer::frame() {
 
 // The panel's size and font follow the window's; the bed's frame fills the rest at the
 // framebuffer's resolution. The close-up is dropped when the area is too narrow for both panels
-// at the bed's full height (the beds would shrink into slivers); the caption band is always kept.
+// (render::keeps_close_up); the caption band is always kept.
 void Viewer::place_frame() {
   const ImGuiIO& io = ImGui::GetIO();
   panel_ = panel_layout(static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y));
@@ -215,12 +215,9 @@ void Viewer::place_frame() {
   if (!snap_) return;
   render::RenderSettings look = look_;
   look.close_up = opt_.look.close_up;
-  if (look.close_up > 0.0) {
-    look.zoom = {};
-    const render::FrameLayout both = render::frame_layout_for(*snap_, look, frame_w_, frame_h_);
-    const render::FrameLayout alone = render::frame_layout(*snap_, frame_w_, frame_h_, 0.0, true);
-    if (both.beds.front().scale < 0.8 * alone.beds.front().scale) look.close_up = 0.0;
-  }
+  if (look.close_up > 0.0 &&
+      !render::keeps_close_up(*snap_, frame_w_, frame_h_, look.close_up, look.caption_band))
+    look.close_up = 0.0;
   if (look.close_up != look_.close_up) look_.zoom = {};  // the panels changed
   look_.close_up = look.close_up;
   follow_tracked();

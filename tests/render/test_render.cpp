@@ -474,6 +474,24 @@ TEST(ColourModes, ForceAndTorqueAreLogarithmicOverFourDecades) {
   EXPECT_FALSE(colour_scale(ColourBy::speed, s, 0.5, 1.0, 8).log);
 }
 
+// The fault: a 1000 x 650 window dropped the close-up though both panels fitted with the beds
+// 75 % as tall as the whole bed alone. The paper's and the teaching bed's domain (0.15 x 0.9 m)
+// in the area the viewer's panel leaves (panel_layout: 450 px of 1000, 450 of 1280, 600 of 1920,
+// 360 of 800): kept at 1000 x 650, 1280 x 720 and 1920 x 1080, dropped at 800 x 650 where the
+// beds would be 38 % as tall.
+TEST(Layout, TheCloseUpStaysWhileTheBedsKeepTwoThirdsOfTheirHeight) {
+  const Snapshot s = empty_box(0.15, 0.9);
+  EXPECT_TRUE(keeps_close_up(s, 1000 - 450, 650, 0.4, true));
+  EXPECT_TRUE(keeps_close_up(s, 1280 - 450, 720, 0.4, true));
+  EXPECT_TRUE(keeps_close_up(s, 1920 - 600, 1080, 0.4, true));
+  EXPECT_FALSE(keeps_close_up(s, 800 - 360, 650, 0.4, true));
+  const double both = frame_layout(s, 550, 650, 0.4, true).beds.front().scale;
+  const double alone = frame_layout(s, 550, 650, 0.0, true).beds.front().scale;
+  EXPECT_GT(both / alone, 0.7);
+  EXPECT_LT(both / alone, 0.8);  // what the old rule needed
+  EXPECT_FALSE(keeps_close_up(s, 550, 650, 0.0, true));  // none asked for
+}
+
 TEST(RenderBackends, UnknownNameListsTheKnownOnes) {
   try {
     make_context("vulkan", 64, 64);
