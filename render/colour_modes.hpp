@@ -13,7 +13,7 @@ namespace fluidbed::render {
 struct ColourScale {
   double min = 0.0, max = 1.0;  // value range mapped onto the colour map (unit of the quantity)
   int bands = 0;                // > 0: quantised into this many bands (height)
-  bool log = false;             // positions by log(value) (0 < min); at or below min: the first colour
+  bool log = false;             // positions by log(value) (0 < min); at or below min: the bottom
   std::string title;            // "speed (m/s)"
 };
 

@@ -78,7 +78,8 @@ void Renderer::Impl::draw_info(const Snapshot& s, const FrameLayout& l, const Re
     if (rs.gas_arrows_coloured) {
       below += 1.4f * l.font;
       const Rect bar{x, below, x + l.font, below + 0.6f * l.colour_bar.height()};
-      colour_bar(bar, ColourMap::inferno, {0.0, rs.gas_colour_max, 0, false, "gas speed (m/s)"}, l, th);
+      const ColourScale gas{0.0, rs.gas_colour_max, 0, false, "gas speed (m/s)"};
+      colour_bar(bar, ColourMap::inferno, gas, l, th);
       below = bar.y1 + 1.6f * l.font;
     }
     const auto len = f(s.height / s.ny * bed.scale);

@@ -71,7 +71,7 @@ const char* to_string(BubbleEvent e) {
 
 const char* to_string(Regime r) {
   static constexpr const char* kNames[] = {"fixed", "bubbling", "slugging", "spouting",
-                                                   "expanded"};
+                                           "expanded"};
   const auto k = static_cast<std::size_t>(r);
   return k < std::size(kNames) ? kNames[k] : "";
 }

@@ -152,7 +152,8 @@ TEST(RunResumeOutputs, StoppedAndResumedRunsWriteTheUnstoppedRunsFiles) {
   ASSERT_GT(ended, 0);
   ::waitpid(ended, nullptr, 0);
   const fs::path half = kill / "frames" / ("frame_000019.png.partial." + std::to_string(ended));
-  const fs::path live = kill / "frames" / ("frame_000019.png.partial." + std::to_string(::getpid()));
+  const fs::path live =
+      kill / "frames" / ("frame_000019.png.partial." + std::to_string(::getpid()));
   write_file(half, "half");
   write_file(live, "half");
   const CommandResult finished = run_fluidbed("run --resume \"" + kill.string() + "\"", "resume-k");
