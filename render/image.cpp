@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/atomic_file.hpp"
+
 namespace fluidbed::render {
 namespace {
 
@@ -62,7 +64,7 @@ std::vector<std::uint8_t> encode_png(int width, int height, const std::uint8_t* 
 
 void write_png(const std::string& path, int width, int height, const std::uint8_t* rgb) {
   const std::vector<std::uint8_t> file = encode_png(width, height, rgb);
-  const std::string tmp = path + ".partial." + std::to_string(::getpid());
+  const std::string tmp = partial_name(path);
   FILE* f = std::fopen(tmp.c_str(), "wb");
   bool ok = f && std::fwrite(file.data(), 1, file.size(), f) == file.size();
   if (f && std::fclose(f) != 0) ok = false;

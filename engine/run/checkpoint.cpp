@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 #include <vector>
@@ -74,7 +75,7 @@ void write_checkpoint(const std::string& run_dir, const Simulation& sim,
                       const nlohmann::json& options, bool bubbles,
                       const std::function<void(const std::string&)>& add_files) {
   const fs::path dir = folder_of(run_dir);
-  const fs::path tmp = fs::path(run_dir) / ("checkpoint.partial." + std::to_string(::getpid()));
+  const fs::path tmp = partial_name((fs::path(run_dir) / "checkpoint").string());
   std::error_code ec;
   fs::remove_all(tmp, ec);
   fs::create_directories(tmp, ec);
@@ -210,13 +211,9 @@ void remove_partial_files(const std::string& run_dir) {
     for (const auto& e : fs::directory_iterator(dir, ec)) {
       if (!e.is_regular_file(ec)) continue;
       const std::string name = e.path().filename().string();
-      const std::size_t at = name.rfind(".partial.");
-      if (at == std::string::npos || at == 0) continue;
-      const std::string digits = name.substr(at + 9);
-      if (digits.empty() || digits.size() > 9 ||
-          digits.find_first_not_of("0123456789") != std::string::npos)
-        continue;
-      const auto pid = static_cast<pid_t>(std::stol(digits));
+      const std::optional<pid_t> owner = partial_owner(name);
+      if (!owner) continue;
+      const pid_t pid = *owner;
       // A live process's (this one's, or another's writing beside it) is being written.
       if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
       stale.push_back(e.path());
