@@ -22,6 +22,8 @@ PACKAGES=(
   xdotool               # drives the viewer's window with a pointer and keys in its tests
   python3-vtk9          # reads the VTK files back in the render tests (ParaView's readers)
   liggghts              # the peer DEM code: `fluidbed export --to liggghts` decks are run in tests
+  pybind11-dev python3-dev python3-numpy  # the Python module (import fluidbed)
+  python3-pytest        # its tests
   openfoam              # DPMFoam: `fluidbed export --to openfoam` cases are run in tests (installs in ~10 s)
 )
 missing=()

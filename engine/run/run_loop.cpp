@@ -12,9 +12,7 @@
 #include "core/steps.hpp"
 
 namespace fluidbed {
-namespace {
 
-// RunOptions' checks after a gas step (see run.hpp).
 void check_gas_step(const Simulation& sim, const RunOptions& o) {
   const double cfl = sim.coupling_diagnostics().gas.max_cfl;
   if (!(cfl <= o.cfl_limit)) {
@@ -50,8 +48,6 @@ void check_start(const Simulation& sim) {
       throw SimulationFailure(os.str());
     }
 }
-
-}  // namespace
 
 RunResult run_simulation(Simulation& sim, const RunOptions& options) {
   const Settings& s = sim.settings();

@@ -61,6 +61,12 @@ struct RunResult {
   std::vector<PowerSpectrum> probe_spectra;
 };
 
+// The run's checks, for a caller that steps `sim` itself (the Python module): before the first
+// step, a starting state that is not finite; after each gas step, RunOptions' limits (the gas
+// CFL number, the cells' porosity). Each throws SimulationFailure in words.
+void check_start(const Simulation& sim);
+void check_gas_step(const Simulation& sim, const RunOptions& o);
+
 // Steps `sim` to the end time. Throws SimulationFailure when the run blows up.
 RunResult run_simulation(Simulation& sim, const RunOptions& options);
 

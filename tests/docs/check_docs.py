@@ -9,6 +9,10 @@ each scene, lesson, script and file it names exists (in the source tree, or writ
 before it is named); each study it names is one ``fluidbed study --list`` lists. Checked for every
 page: its relative links lead to files that exist, and it is not over its length.
 
+Every fenced ``python`` block that imports fluidbed is run the same way with ``--python`` (the
+build tree's package on PYTHONPATH, ``--python-path``); without ``--python-path`` (a build without
+the module) it is skipped.
+
 An HTML comment on the lines just before a block says what to do with it:
   <!-- doc: long -->           check the block, do not run it;
   <!-- doc: until T -->        run it with every ``--until`` of a run, bench, view or sweep set to T
@@ -20,6 +24,7 @@ An HTML comment on the lines just before a block says what to do with it:
                                into the folder of this block and of every later one of the page.
 
 Usage: check_docs.py --program PATH --source DIR --work DIR [--cache DIR] [--page FILE ...]
+                     [--python PYTHON --python-path DIR]
 Exit status 0 when every check passes, 1 otherwise (each failure one line: page:line: what).
 """
 import argparse
@@ -235,7 +240,7 @@ def transformed(block, program):
     return "\n".join(out) + "\n"
 
 
-def run_block(block, program, source, work, cache, files, failures):
+def run_block(block, program, source, work, cache, files, failures, python=None):
     folder = os.path.join(work, f"{block.page.replace('/', '_')}-{block.line}")
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder)
@@ -245,9 +250,16 @@ def run_block(block, program, source, work, cache, files, failures):
         os.makedirs(os.path.dirname(target) or folder, exist_ok=True)
         with open(target, "w", encoding="utf-8") as f:
             f.write(text)
-    script = "set -euo pipefail\n" + transformed(block, program)
-    with open(os.path.join(folder, "block.sh"), "w", encoding="utf-8") as f:
-        f.write(script)
+    if python:
+        script = block.text
+        with open(os.path.join(folder, "block.py"), "w", encoding="utf-8") as f:
+            f.write(script)
+        command = [python[0], "block.py"]
+    else:
+        script = "set -euo pipefail\n" + transformed(block, program)
+        with open(os.path.join(folder, "block.sh"), "w", encoding="utf-8") as f:
+            f.write(script)
+        command = ["bash", "block.sh"]
     env = dict(os.environ)
     env["PATH"] = os.path.dirname(os.path.abspath(program.path)) + os.pathsep + env.get("PATH", "")
     env.pop("DISPLAY", None)
@@ -255,10 +267,12 @@ def run_block(block, program, source, work, cache, files, failures):
     env.pop("FLUIDBED_ASSETS", None)
     if cache:
         env["FLUIDBED_CACHE"] = cache
+    if python:
+        env["PYTHONPATH"] = python[1]
     expected = int(block.marker("exits")[0]) if block.marker("exits") else 0
     start = time.monotonic()
     try:
-        r = subprocess.run(["bash", "block.sh"], cwd=folder, env=env, capture_output=True,
+        r = subprocess.run(command, cwd=folder, env=env, capture_output=True,
                            text=True, timeout=RUN_TIMEOUT_S)
         status, output = r.returncode, r.stdout + r.stderr
     except subprocess.TimeoutExpired:
@@ -280,6 +294,8 @@ def main():
     ap.add_argument("--work", required=True)
     ap.add_argument("--cache", default="")
     ap.add_argument("--page", action="append", default=[], help="only these pages (relative)")
+    ap.add_argument("--python", default="", help="the Python the module was built for")
+    ap.add_argument("--python-path", default="", help="the build tree's package folder")
     a = ap.parse_args()
     source = os.path.abspath(a.source)
     program = Program(os.path.abspath(a.program))
@@ -311,6 +327,12 @@ def main():
                     files[name] = last_text.text
             if block.lang == "text":
                 last_text = block
+            if block.lang == "python" and "import fluidbed" in block.text:
+                if a.python and a.python_path and not block.marker("long"):
+                    run_block(block, program, source, a.work, a.cache, files, failures,
+                              (a.python, a.python_path))
+                    ran += 1
+                continue
             if block.lang not in ("sh", "bash") or not fluidbed_commands(block.text):
                 continue
             checked += 1

@@ -97,6 +97,23 @@ TEST(Install, InstalledCopyRunsASceneFromItsShareFolderAndDrawsAFrame) {
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(read_file(work / "bench" / "bench.json").find("\"particles\": 7"), std::string::npos)
       << read_file(work / "bench" / "bench.json");
+
+#ifdef FLUIDBED_PYTHON_EXE
+  // The Python module: under a prefix python3 does not search, the install names the PYTHONPATH
+  // to set; from there the module takes its scenes and font from the installed share folder.
+  const fs::path site = prefix / "lib" / "python3" / "dist-packages";
+  EXPECT_NE(install.out.find("set PYTHONPATH=" + site.string()), std::string::npos) << install.out;
+  const Shell py = shell("env PYTHONPATH='" + site.string() + "' " FLUIDBED_PYTHON_EXE
+                         " -c \"import fluidbed; s = fluidbed.Simulation(fluidbed.scene('drop')); "
+                         "s.step(10); print(fluidbed.__file__); print(fluidbed.scene('drop')); "
+                         "s.save_png('py.png', width=320, height=240)\"",
+                         work, "python");
+  ASSERT_EQ(py.status, 0) << py.out;
+  EXPECT_NE(py.out.find((site / "fluidbed" / "__init__.py").string()), std::string::npos)
+      << py.out;
+  EXPECT_NE(py.out.find((share / "scenes" / "drop.toml").string()), std::string::npos) << py.out;
+  EXPECT_GT(fs::file_size(work / "py.png"), 1000u);
+#endif
   fs::remove_all(root);
 }
 
@@ -146,5 +163,14 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndHoldsProgramScenesAndManPag
   EXPECT_TRUE(files.count("./usr/share/doc/fluidbed/docs/teaching.md")) << list.out;
   for (const std::string& scene : shipped_scenes())
     EXPECT_TRUE(files.count("./usr/share/fluidbed/scenes/" + scene)) << scene << "\n" << list.out;
+#ifdef FLUIDBED_PYTHON_EXE
+  // The Python module, where Debian's python3 finds it (/usr/lib/python3/dist-packages).
+  EXPECT_TRUE(files.count("./usr/lib/python3/dist-packages/fluidbed/__init__.py")) << list.out;
+  bool native = false;
+  for (const std::string& f : files)
+    native = native || f.rfind("./usr/lib/python3/dist-packages/fluidbed/_core.", 0) == 0;
+  EXPECT_TRUE(native) << list.out;
+  EXPECT_NE(field("Recommends").find("python3-numpy"), std::string::npos) << info.out;
+#endif
   fs::remove_all(dir);
 }
