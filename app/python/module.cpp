@@ -157,11 +157,15 @@ class PySimulation {
     if (!s.has_gas()) return py::none();
     const py::ssize_t nx = s.nx, ny = s.ny;
     py::dict d;
-    std::vector<double> x(static_cast<std::size_t>(nx)), y(static_cast<std::size_t>(ny));
-    for (std::size_t i = 0; i < x.size(); ++i) x[i] = (static_cast<double>(i) + 0.5) * s.width / static_cast<double>(nx);
-    for (std::size_t j = 0; j < y.size(); ++j) y[j] = (static_cast<double>(j) + 0.5) * s.height / static_cast<double>(ny);
-    d["x"] = copy_array(x, {nx});
-    d["y"] = copy_array(y, {ny});
+    // Cell centres: (k + 1/2) cells of length/count.
+    const auto centres = [](py::ssize_t count, double length) {
+      std::vector<double> c(static_cast<std::size_t>(count));
+      for (std::size_t k = 0; k < c.size(); ++k)
+        c[k] = (static_cast<double>(k) + 0.5) * length / static_cast<double>(count);
+      return copy_array(c, {count});
+    };
+    d["x"] = centres(nx, s.width);
+    d["y"] = centres(ny, s.height);
     d["u"] = copy_array(s.gas_ux, {ny, nx});
     d["v"] = copy_array(s.gas_uy, {ny, nx});
     d["p"] = copy_array(s.pressure, {ny, nx});
@@ -173,7 +177,8 @@ class PySimulation {
   // the regions found, bubbles and jet cavities, as `run --bubbles` finds them at its frames.
   // Calls in a row track the regions (ids, velocities) as the run's frames do.
   py::dict bubbles() {
-    const BubbleFrame& f = analysis().analyse(model_->sim().time(), model_->sim().dem().particles());
+    const Simulation& sim = model_->sim();
+    const BubbleFrame& f = analysis().analyse(sim.time(), sim.dem().particles());
     py::list regions;
     for (const Bubble& b : f.regions) {
       py::dict r;
