@@ -9,10 +9,13 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "analysis/pressure_probe.hpp"
 #include "build_info.hpp"
 #include "cli/commands.hpp"
 #include "cli/study.hpp"
@@ -23,7 +26,7 @@
 #include "render/image.hpp"
 #include "render/renderer.hpp"
 #include "run/bubble_recorder.hpp"
-#include "run/packed_bed.hpp"
+#include "run/recorder.hpp"
 #include "run/run_loop.hpp"
 #include "scene/scene_keys.hpp"
 #include "scene/scene_loader.hpp"
@@ -77,6 +80,16 @@ class PySimulation {
       model_ = std::make_unique<app::ViewModel>(settings_);
     }
     check_start(model_->sim());
+    start_recording();
+  }
+
+  // The measurements (summary, energy budget, timeseries) start afresh: at construction, and
+  // when reset() or the ideal case replaces the simulation. A run of `fluidbed run` records the
+  // same way (run/recorder.hpp), with no end step here.
+  void start_recording() {
+    recorder_ = std::make_unique<RunRecorder>(model_->sim(),
+                                              std::numeric_limits<std::int64_t>::max());
+    wall_ = 0.0;
   }
 
   // Steps until `last_step`, the GIL released, looking at Python's signals about ten times per
@@ -90,13 +103,13 @@ class PySimulation {
       snapshot_valid_ = false;
       {
         py::gil_scoped_release free;
-        const auto until = Clock::now() + std::chrono::milliseconds(100);
+        const auto start = Clock::now();
+        const auto until = start + std::chrono::milliseconds(100);
         do {
-          const int gas_steps = sim.coupling_diagnostics().gas_steps;
           sim.step();
-          if (sim.has_gas() && sim.coupling_diagnostics().gas_steps != gas_steps)
-            check_gas_step(sim, checks);
+          if (recorder_->after_step(sim)) check_gas_step(sim, checks);
         } while (sim.steps() < last_step && Clock::now() < until);
+        wall_ += std::chrono::duration<double>(Clock::now() - start).count();
       }
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
       if (!progress.is_none()) progress(sim.time());
@@ -177,8 +190,7 @@ class PySimulation {
   // the regions found, bubbles and jet cavities, as `run --bubbles` finds them at its frames.
   // Calls in a row track the regions (ids, velocities) as the run's frames do.
   py::dict bubbles() {
-    const Simulation& sim = model_->sim();
-    const BubbleFrame& f = analysis().analyse(sim.time(), sim.dem().particles());
+    const BubbleFrame& f = analysed().frame();
     py::list regions;
     for (const Bubble& b : f.regions) {
       py::dict r;
@@ -204,12 +216,38 @@ class PySimulation {
     return d;
   }
 
+  // summary.json of the steps since the measurements started, as `fluidbed run` writes it.
+  std::string summary() const { return recorder_->summary(model_->sim(), wall_).dump(); }
+
+  // timeseries.csv of the steps since the measurements started: its header and rows as `fluidbed
+  // run` writes them.
+  std::string timeseries() const {
+    std::string csv = timeseries_header(false, recorder_->probes().size());
+    for (const TimeseriesRow& row : recorder_->rows()) csv += timeseries_line(row, false);
+    return csv;
+  }
+
+  // Pa, each of diagnostics.probes now: the timeseries' p_probe_N of this state.
+  std::vector<double> probes() const {
+    std::vector<double> out;
+    const Simulation& sim = model_->sim();
+    if (!sim.has_gas()) return out;
+    for (const ProbePoint& q : recorder_->probes())
+      out.push_back(probe_pressure(sim.gas()->grid(), sim.gas()->pressure(), q.x, q.y));
+    return out;
+  }
+
   // The command line's frame of this state: `look` holds `run`'s picture options (--colour,
   // --frame-size, ...), checked as `run` checks them.
   py::array_t<std::uint8_t> render(const app::OutputArgs& look) {
     const app::FrameOptions fo = app::frame_options(look, app::asset_dir(), settings_);
-    Snapshot s = snapshot();
-    if (fo.look.bubble_outlines) add_bubble_fields(analysis(), model_->sim(), s);
+    const Snapshot* s = &snapshot();
+    Snapshot outlined;  // a copy only for the outlines
+    if (fo.look.bubble_outlines) {
+      outlined = *s;
+      add_bubble_fields(analysed(), outlined);
+      s = &outlined;
+    }
     if (!context_ || context_->width() != fo.width || context_->height() != fo.height ||
         backend_ != fo.backend) {
       renderer_.reset();
@@ -218,17 +256,28 @@ class PySimulation {
       renderer_ = std::make_unique<render::Renderer>(*context_, fo.font);
     }
     context_->make_current();
-    const render::Image img = renderer_->render_frame(s, fo.look, fo.width, fo.height);
+    const render::Image img = renderer_->render_frame(*s, fo.look, fo.width, fo.height);
     py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(img.height),
                                    static_cast<py::ssize_t>(img.width), py::ssize_t{3}});
     std::copy(img.rgb.begin(), img.rgb.end(), out.mutable_data());
     return out;
   }
 
-  BubbleAnalysis& analysis() {
-    if (!bubbles_)
+  // The bubble analysis with a frame of the state now: one frame per simulated time (bubbles()
+  // and a picture with outlines of the same state share it), started afresh when the time went
+  // back (reset).
+  const BubbleAnalysis& analysed() {
+    const Simulation& sim = model_->sim();
+    if (bubbles_ && sim.time() < analysed_t_) bubbles_.reset();
+    if (!bubbles_) {
       bubbles_ = std::make_unique<BubbleAnalysis>(bubble_settings_for(settings_),
                                                   bubble_geometry_for(settings_));
+      analysed_t_ = -1.0;
+    }
+    if (sim.time() != analysed_t_) {
+      bubbles_->analyse(sim.time(), sim.dem().particles());
+      analysed_t_ = sim.time();
+    }
     return *bubbles_;
   }
 
@@ -239,6 +288,16 @@ class PySimulation {
     snapshot_valid_ = false;
     return *model_;
   }
+  // A control that replaces the simulation (reset, the ideal case) starts the measurements afresh.
+  void reset() {
+    model().reset();
+    start_recording();
+  }
+  void set_ideal(bool on) {
+    if (on == model_->ideal()) return;
+    model().set_ideal(on);
+    start_recording();
+  }
   const Settings& settings() const { return settings_; }
 
  private:
@@ -246,7 +305,10 @@ class PySimulation {
   std::unique_ptr<app::ViewModel> model_;
   Snapshot snap_;
   bool snapshot_valid_ = false;
+  std::unique_ptr<RunRecorder> recorder_;
+  double wall_ = 0.0;  // s, stepping since the measurements started
   std::unique_ptr<BubbleAnalysis> bubbles_;
+  double analysed_t_ = -1.0;  // s, the time of its last frame
   std::unique_ptr<render::GlContext> context_;
   std::unique_ptr<render::Renderer> renderer_;
   std::string backend_;
@@ -267,6 +329,9 @@ PYBIND11_MODULE(_core, m) {
   using namespace fluidbed;
   using namespace fluidbed::python;
   m.doc() = "The native half of fluidbed (import fluidbed instead).";
+  // The verbs' lines a line at a time, as in a terminal: in Jupyter they reach the cell through a
+  // pipe (fluidbed/__init__.py, _call_verb), whose block buffer would hold them to the end.
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
   m.attr("__version__") = std::string(app::version());
   m.attr("version_line") = app::version_line();
 
@@ -331,8 +396,18 @@ PYBIND11_MODULE(_core, m) {
           })
       .def_property(
           "ideal_collisions", [](PySimulation& s) { return s.model().ideal(); },
-          [](PySimulation& s, bool on) { s.model().set_ideal(on); })
-      .def("reset", [](PySimulation& s) { s.model().reset(); })
+          [](PySimulation& s, bool on) { s.set_ideal(on); })
+      .def("reset", &PySimulation::reset)
+      .def("summary", &PySimulation::summary)
+      .def("timeseries", &PySimulation::timeseries)
+      .def("probes", &PySimulation::probes)
+      .def_property_readonly("probe_points",
+                             [](PySimulation& s) {
+                               std::vector<std::pair<double, double>> out;
+                               for (const ProbePoint& q : s.settings().diagnostics.probes)
+                                 out.emplace_back(q.x, q.y);
+                               return out;
+                             })
       .def("particles", &PySimulation::particles)
       .def("gas", &PySimulation::gas)
       .def("render", &PySimulation::render, py::arg("look"))
@@ -402,6 +477,10 @@ PYBIND11_MODULE(_core, m) {
   m.def("study_command", [](const app::StudyArgs& a) { return call_verb(a, app::study_command); });
 
   m.def("asset_dir", [] { return app::asset_dir(); });
+  m.def("flush_output", [] {
+    std::fflush(stdout);
+    std::fflush(stderr);
+  });
   m.def("write_png", [](const std::string& path,
                         const py::array_t<std::uint8_t, py::array::c_style>& rgb) {
     if (rgb.ndim() != 3 || rgb.shape(2) != 3)

@@ -39,7 +39,12 @@ BedGeometry bubble_geometry_for(const Settings& s) {
 }
 
 void add_bubble_fields(BubbleAnalysis& analysis, const Simulation& sim, Snapshot& s) {
-  const BubbleFrame& f = analysis.analyse(sim.time(), sim.dem().particles());
+  analysis.analyse(sim.time(), sim.dem().particles());
+  add_bubble_fields(analysis, s);
+}
+
+void add_bubble_fields(const BubbleAnalysis& analysis, Snapshot& s) {
+  const BubbleFrame& f = analysis.frame();
   const VoidFractionField& v = analysis.void_fraction();
   s.void_nx = v.grid.nx;
   s.void_ny = v.grid.ny;

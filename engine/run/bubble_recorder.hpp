@@ -24,6 +24,8 @@ BedGeometry bubble_geometry_for(const Settings& s);
 // The analysis of the state `sim` is in, written into the snapshot for pictures (frames,
 // montages, the viewer, VTK): the fine void fraction and the outlines of the regions found.
 void add_bubble_fields(BubbleAnalysis& analysis, const Simulation& sim, Snapshot& s);
+// The same from the frame `analysis` found last, for a state it has analysed already.
+void add_bubble_fields(const BubbleAnalysis& analysis, Snapshot& s);
 
 struct MixingSample {
   double t = 0.0;      // s

@@ -6,6 +6,7 @@ the `fluidbed` program of the same build and FLUIDBED_CACHE the tests' packed be
 
 import ast
 import json
+import math
 import os
 import signal
 import struct
@@ -167,6 +168,13 @@ def test_bubbles_are_the_ones_the_run_finds(tmp_path):
     assert abs(found["t"] - t) < 1e-9
     got = sorted((b["x"], b["y"], b["d_eq"]) for b in found["regions"] if not b["jet_cavity"])
     assert np.allclose(got, want, rtol=1e-8, atol=0)
+    # A picture with outlines of the same state shares its frame; a reset starts the tracking
+    # again.
+    sim.render(width=320, height=240, bubbles=True)
+    assert sim.bubbles()["regions"] == found["regions"]
+    sim.reset()
+    sim.run(until=0.1, progress=False)
+    assert sim.bubbles()["t"] == sim.time
 
 
 def test_run_gives_the_command_lines_summary_and_timeseries(tmp_path):
@@ -282,6 +290,8 @@ def test_a_blow_up_raises_in_words_and_reset_starts_again():
     assert sim.state_hash == start and sim.time == 0.0
 
 
+@pytest.mark.skipif(os.environ.get("FLUIDBED_SANITIZED") == "1",
+                    reason="under ASan freed memory waits in quarantine; LeakSanitizer checks")
 def test_no_leak_over_a_thousand_simulations():
     def cycle():
         sim = fluidbed.Simulation(DROP)
@@ -296,3 +306,60 @@ def test_no_leak_over_a_thousand_simulations():
         cycle()
     after = rss_bytes()
     assert after <= 1.05 * before, f"RSS {before / 2**20:.1f} -> {after / 2**20:.1f} MiB"
+
+
+def test_the_measurements_of_a_simulation_are_the_command_lines(tmp_path):
+    probe = {"diagnostics.probes": [[0.075, 0.05]]}
+    cli("run", PAPER, "--until", "0.05", "--set", "diagnostics.probes=[[0.075, 0.05]]", "--out",
+        tmp_path / "cli")
+    sim = fluidbed.Simulation(PAPER, set=probe)
+    sim.run(until=0.05, progress=False)
+    want = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    got = sim.summary()
+    # The recorder's keys are the run's; the run adds what the verb knows (scene, version, ...).
+    assert set(got) <= set(want) and {"dp_mean_pa", "energy", "probes"} <= set(got)
+    for key in got:
+        if "wall" not in key and "per_s" not in key and "cpu" not in key:
+            assert got[key] == want[key], key
+    assert sim.energy() == got["energy"]
+    e = got["energy"]  # the budget closes: change = work - losses + residual
+    assert abs(e["mechanical_change_j"] - (e["gas_work_j"] - e["dashpot_dissipation_j"]
+                                           - e["friction_dissipation_j"] + e["residual_j"])) \
+        <= 1e-9 * max(abs(e["gas_work_j"]), 1e-12)
+    rows = (tmp_path / "cli" / "timeseries.csv").read_text().splitlines()
+    columns = sim.timeseries
+    assert list(columns.keys()) == rows[0].split(",") and "p_probe_1" in columns
+    # A row every output interval; the run adds one at its last step, which is not on one.
+    assert len(columns["t"]) == len(rows) - 2
+    assert float(rows[-1].split(",")[0]) == pytest.approx(sim.time, abs=1e-12)
+    for k, name in enumerate(rows[0].split(",")):
+        assert np.array_equal(np.asarray(columns[name]),
+                              [float(line.split(",")[k]) for line in rows[1:-1]]), name
+    (point,) = sim.probes
+    assert (point["x"], point["y"]) == (0.075, 0.05)
+    assert point["p"] == pytest.approx(float(rows[-1].split(",")[-1]), rel=1e-8)
+    # reset() starts the measurements afresh; a velocity change does not.
+    sim.superficial_velocity = 2.0
+    assert len(sim.timeseries["t"]) == len(rows) - 2
+    sim.reset()
+    assert len(sim.timeseries["t"]) == 0 and sim.summary()["steps"] == 0
+
+
+def test_study_gives_the_command_lines_table(tmp_path):
+    cli("study", "energy", "--size", "tiny", "--jobs", "1", "--out", tmp_path / "cli")
+    r = fluidbed.study("energy", size="tiny", jobs=1, out=tmp_path / "py")
+    text = (tmp_path / "cli" / "study.csv").read_text().splitlines()
+    header = text[0].split(",")
+    assert list(r.table.keys()) == header and len(r.table[header[0]]) == len(text) - 1
+    for k, name in enumerate(header):
+        if "wall" in name or "per_s" in name or "cpu" in name:
+            continue
+        want = [line.split(",")[k] for line in text[1:]]
+        for w, g in zip(want, list(r.table[name])):
+            if w == "":  # an empty cell: NaN in a column of numbers
+                assert g == "" or math.isnan(g), name
+            elif isinstance(g, str):
+                assert w == g, name
+            else:
+                assert float(w) == g, name
+    assert r.summary.get("status") == "completed"

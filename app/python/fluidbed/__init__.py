@@ -14,11 +14,14 @@ its state as NumPy arrays, draw it, or call the command line's verbs and get the
 
 from __future__ import annotations
 
+import codecs
 import csv
+import io
 import json
 import math
 import os
 import sys
+import threading
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Union
@@ -28,7 +31,8 @@ import numpy as np
 # An installed copy (PREFIX/lib/python3*/*-packages/fluidbed) takes its scenes and font from
 # PREFIX/share/fluidbed, as the installed program does; $FLUIDBED_ASSETS still wins, and the build
 # tree's copy falls back to the source tree's assets.
-_PREFIX = Path(__file__).resolve().parents[min(4, len(Path(__file__).resolve().parents) - 1)]
+_HERE = Path(__file__).resolve()  # PREFIX/lib/python3*/*-packages/fluidbed/__init__.py
+_PREFIX = _HERE.parents[4] if len(_HERE.parents) > 4 else _HERE.parent
 if "FLUIDBED_ASSETS" not in os.environ and (_PREFIX / "share" / "fluidbed" / "scenes").is_dir():
     os.environ["FLUIDBED_ASSETS"] = str(_PREFIX / "share" / "fluidbed")
 
@@ -210,7 +214,11 @@ class Simulation:
     The state as NumPy copies: ``particles`` (Particles), ``gas`` (Gas, or None without gas),
     ``time``, ``dp``, ``state_hash``. The viewer's controls: ``superficial_velocity``,
     ``ideal_collisions``, ``reset()``. Pictures: ``render()``, ``save_png()``. Measurements:
-    ``bubbles()``.
+    ``summary()``, ``energy()``, ``timeseries``, ``probes``, ``bubbles()``.
+
+    The measurements cover the steps since the simulation was made, or since ``reset()`` or a
+    switch of ``ideal_collisions`` (which replace the simulation); a change of
+    ``superficial_velocity`` does not start them again.
 
     A blow-up raises SimulationError and leaves the state where it failed: ``reset()`` starts
     again.
@@ -300,6 +308,36 @@ class Simulation:
         the regions from one to the next (ids, velocities), as the run's frames do."""
         return self._sim.bubbles()
 
+    def summary(self) -> Dict[str, Any]:
+        """summary.json of the steps so far, as ``fluidbed run`` writes it for a run that ended
+        here: dp_mean_pa (after diagnostics.averaging_start), max_overlap_ratio, the gas solver's
+        statistics, bed_top_mean_m, probes, energy, the speed (wall time of the steps alone),
+        state_hash, ..."""
+        return json.loads(self._sim.summary())
+
+    def energy(self) -> Dict[str, float]:
+        """The particles' energy budget since the measurements started (summary()["energy"]):
+        the mechanical energy's parts now (J), its change, the gas's work, the dashpots' and
+        friction's dissipation, and the residual the step-by-step sums leave (J, per s, and as a
+        share of the budget's largest term)."""
+        return self.summary()["energy"]
+
+    @property
+    def timeseries(self) -> Any:
+        """timeseries.csv of the steps so far, as ``fluidbed run`` writes it: a row every
+        diagnostics.output_interval (t, dp, kinetic_energy, contacts, the energy budget's
+        columns, bed_top, p_probe_N, ...), as columns (a pandas DataFrame when pandas is
+        installed, else a dict of NumPy arrays)."""
+        return _table(self._sim.timeseries())
+
+    @property
+    def probes(self) -> List[Dict[str, float]]:
+        """The pressure probes of diagnostics.probes now: [{"x": m, "y": m, "p": Pa}, ...], p the
+        gas pressure at the point minus the mean over the top row of cells (the timeseries'
+        p_probe_N). Empty without probes."""
+        values = self._sim.probes()
+        return [{"x": x, "y": y, "p": p} for (x, y), p in zip(self._sim.probe_points, values)]
+
     def reset(self) -> "Simulation":
         """Back to the starting state (the same state hash as at the start)."""
         self._sim.reset()
@@ -347,13 +385,19 @@ class RunResult:
         """``run``'s timeseries.csv (the same as table)."""
         return self.table
 
+    def read(self, name: str) -> Any:
+        """Another CSV file of the folder as columns, e.g. ``read("bubbles.csv")`` after
+        ``run(..., bubbles=True)``, ``read("dp_spectrum.csv")``; FileNotFoundError when the
+        verb did not write it."""
+        path = Path(self.folder) / name
+        if not path.is_file():
+            raise FileNotFoundError(f"{path}: not written by this run")
+        return _read_table(path)
 
-def _read_table(path: Path) -> Any:
-    """A CSV file with a header row as columns: numbers as float arrays, anything else as text."""
-    if not path.is_file():
-        return None
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
+
+def _table(text: str) -> Any:
+    """CSV text with a header row as columns: numbers as float arrays, anything else as text."""
+    rows = list(csv.reader(io.StringIO(text)))
     if not rows:
         return None
     header, body = rows[0], rows[1:]
@@ -371,9 +415,69 @@ def _read_table(path: Path) -> Any:
     return pandas.DataFrame(columns)
 
 
+def _read_table(path: Path) -> Any:
+    """A CSV file with a header row as columns (None when there is no such file)."""
+    if not path.is_file():
+        return None
+    with open(path, newline="") as f:
+        return _table(f.read())
+
+
 def _read_json(path: Path) -> Dict[str, Any]:
     with open(path) as f:
         return json.load(f)
+
+
+def _forward_output(fd: int, stream: Any) -> Any:
+    """Points the process's file descriptor ``fd`` at a pipe whose text a thread writes to
+    ``stream`` as it comes; returns a function that puts ``fd`` back and waits for the last text."""
+    saved = os.dup(fd)
+    read_end, write_end = os.pipe()
+    os.dup2(write_end, fd)
+    os.close(write_end)
+
+    def pump() -> None:
+        decoder = codecs.getincrementaldecoder("utf-8")(errors="replace")
+        with os.fdopen(read_end, "rb", buffering=0) as pipe:
+            for chunk in iter(lambda: pipe.read(4096), b""):
+                stream.write(decoder.decode(chunk))
+                stream.flush()
+
+    thread = threading.Thread(target=pump, daemon=True)
+    thread.start()
+
+    def restore() -> None:
+        os.dup2(saved, fd)  # the pipe's last writer gone: the thread reads to its end
+        os.close(saved)
+        thread.join()
+
+    return restore
+
+
+def _process_streams() -> bool:
+    """True when sys.stdout and sys.stderr are the process's own (a terminal, a script), false
+    where Python has its own (a Jupyter kernel's streams to the notebook)."""
+    try:
+        return sys.stdout.fileno() == 1 and sys.stderr.fileno() == 2
+    except (AttributeError, OSError, ValueError):
+        return False
+
+
+def _call_verb(verb: Any, args: Any) -> int:
+    """A verb of the command line. What it prints reaches sys.stdout and sys.stderr while it runs
+    where those are not the process's own (Jupyter shows it under the cell), all of it before
+    the verb returns, so that it is not mixed into what the caller prints next."""
+    if _process_streams():
+        return verb(args)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    restore = [_forward_output(1, sys.stdout), _forward_output(2, sys.stderr)]
+    try:
+        return verb(args)
+    finally:
+        _core.flush_output()
+        for r in restore:
+            r()
 
 
 def _verb_status(status: int, what: str, resume: str) -> None:
@@ -425,7 +529,7 @@ def run(scene: PathLike, until: Optional[float] = None, out: Optional[PathLike] 
             given.append(name)
     a.output = o
     a.outputs_given = given
-    _verb_status(_core.run_command(a), "run", f"fluidbed.run(..., out={folder!r}, resume=True)")
+    _verb_status(_call_verb(_core.run_command, a), "run", f"fluidbed.run(..., out={folder!r}, resume=True)")
     d = Path(folder)
     return RunResult(folder, _read_json(d / "summary.json"), _read_table(d / "timeseries.csv"))
 
@@ -454,7 +558,7 @@ def sweep(scene: Optional[PathLike] = None, velocities: Union[None, Sequence[flo
         a.options_given = True
     a.threads = int(threads)
     a.threads_given = threads != 2
-    _verb_status(_core.sweep_command(a), "sweep",
+    _verb_status(_call_verb(_core.sweep_command, a), "sweep",
                  f"fluidbed.sweep(out={folder!r}, resume=True)")
     d = Path(folder)
     return RunResult(folder, _read_json(d / "summary.json"), _read_table(d / "sweep.csv"))
@@ -482,7 +586,7 @@ def study(name: str, out: Optional[PathLike] = None, size: str = "full",
     a.until = float(until)
     a.seeds = _seeds_text(seeds)
     a.jobs = int(jobs)
-    _verb_status(_core.study_command(a), "study",
+    _verb_status(_call_verb(_core.study_command, a), "study",
                  f"fluidbed.study({name!r}, out={folder!r}, resume=True)")
     d = Path(folder)
     status = d / "status.json"
