@@ -24,6 +24,7 @@ PACKAGES=(
   liggghts              # the peer DEM code: `fluidbed export --to liggghts` decks are run in tests
   pybind11-dev python3-dev python3-numpy  # the Python module (import fluidbed)
   python3-pytest        # its tests
+  python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib  # the notebooks in assets/notebooks, run in a test
   openfoam              # DPMFoam: `fluidbed export --to openfoam` cases are run in tests (installs in ~10 s)
 )
 missing=()
