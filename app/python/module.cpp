@@ -42,6 +42,11 @@ namespace {
 
 using Array = py::array_t<double>;
 
+// A blow-up whose message already names its likely cause (failure_hint at the velocity in use).
+struct HintedFailure : SimulationFailure {
+  using SimulationFailure::SimulationFailure;
+};
+
 // A copy of `v` as a NumPy array of the given shape (the engine's buffer is not shared: the array
 // stays valid after the next step).
 Array copy_array(const std::vector<double>& v, std::vector<py::ssize_t> shape) {
@@ -96,9 +101,21 @@ class PySimulation {
   // wall second: Ctrl+C raises KeyboardInterrupt between two steps, the state whole.
   // `progress` (may be None) is called with the simulated time between chunks.
   void step_to(std::int64_t last_step, const py::object& progress) {
-    using Clock = std::chrono::steady_clock;
     const RunOptions checks;
     Simulation& sim = model_->sim();  // rebuilt only by the controls, never while it steps
+    try {
+      step_chunks(sim, last_step, checks, progress);
+    } catch (const SimulationFailure& e) {
+      // The hint names the velocity in use, which the controls may have changed from the scene's.
+      const double u = sim.has_gas() ? sim.gas()->superficial_velocity() : -1.0;
+      throw HintedFailure(e.what() + failure_hint(e.what(), u));
+    }
+  }
+
+  // step_to's loop: chunks of about 100 ms of stepping, Python's signals and progress between.
+  void step_chunks(Simulation& sim, std::int64_t last_step, const RunOptions& checks,
+                   const py::object& progress) {
+    using Clock = std::chrono::steady_clock;
     while (sim.steps() < last_step) {
       snapshot_valid_ = false;
       {
@@ -343,6 +360,8 @@ PYBIND11_MODULE(_core, m) {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
       PyErr_SetString(scene_error.ptr(), e.what());
+    } catch (const HintedFailure& e) {
+      PyErr_SetString(simulation_error.ptr(), e.what());
     } catch (const SimulationFailure& e) {
       PyErr_SetString(simulation_error.ptr(),
                       (std::string(e.what()) + failure_hint(e.what())).c_str());

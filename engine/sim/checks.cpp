@@ -206,19 +206,33 @@ void refuse_unsafe_scene(const Settings& s) {
   if (!c.refusals.empty()) throw InputError(c.refusals.front() + " (see: fluidbed check)");
 }
 
-std::string failure_hint(const std::string& failure) {
+std::string failure_hint(const std::string& failure, double velocity_in_use) {
   const std::lock_guard lock(hint_mutex);
   const std::string head = "; likely cause: ";
   if (mentions(failure, "CFL")) {
     // The gas outran its step: the gas velocity crossed the limit, whatever the contacts.
-    for (const std::string& w : hint.warnings)
-      if (mentions(w, "CFL")) return head + w;
+    const bool scenes = velocity_in_use < 0.0 || velocity_in_use == hint.superficial_velocity;
+    if (scenes)
+      for (const std::string& w : hint.warnings)
+        if (mentions(w, "CFL")) return head + w;
     if (!hint.gas) return "";
-    return head + "the gas velocity: the jet enters at " + fmt("%.3g m/s", hint.jet_velocity) +
-           " (inlet.superficial_velocity = " + fmt("%.3g m/s", hint.superficial_velocity) +
-           "), faster than the gas can be followed in a step; lower inlet.superficial_velocity, "
-           "or time.dt (now " +
-           fmt("%.3g s", hint.dt) + ")";
+    const std::string tail = ", faster than the gas can be followed in a step; lower " +
+                             std::string(scenes ? "inlet.superficial_velocity" : "the velocity") +
+                             ", or time.dt (now " + fmt("%.3g s", hint.dt) + ")";
+    if (scenes)
+      return head + "the gas velocity: the jet enters at " + fmt("%.3g m/s", hint.jet_velocity) +
+             " (inlet.superficial_velocity = " + fmt("%.3g m/s", hint.superficial_velocity) +
+             ")" + tail;
+    // A control changed the velocity: the jet's is in proportion (the inlet over the slots).
+    const std::string jet =
+        hint.superficial_velocity > 0.0
+            ? "the jet enters at " +
+                  fmt("%.3g m/s", hint.jet_velocity * velocity_in_use / hint.superficial_velocity) +
+                  " ("
+            : "(";
+    return head + "the gas velocity: " + jet + fmt("%.3g m/s", velocity_in_use) +
+           " superficial in use; the scene's inlet.superficial_velocity is " +
+           fmt("%.3g m/s", hint.superficial_velocity) + ")" + tail;
   }
   for (const std::string& w : hint.warnings)
     if (mentions(w, "time.dt") || mentions(w, "contact.")) return head + w;

@@ -64,7 +64,10 @@ void refuse_unsafe_scene(const Settings& s);
 // crossed its limit and the last scene given to refuse_unsafe_scene: a gas CFL number names the
 // gas velocity (the scene's CFL warning when it has one, else the jet's velocity and the key to
 // lower); any other failure names the scene's first warning about its step or contacts, else
-// the first warning. Empty when nothing in the scene points at the cause.
-std::string failure_hint(const std::string& failure);
+// the first warning. Empty when nothing in the scene points at the cause. velocity_in_use (m/s):
+// the superficial velocity the simulation failed at where a control changed it from the scene's
+// (Python's superficial_velocity): the hint then names it, and the jet's velocity at it; < 0: the
+// scene's.
+std::string failure_hint(const std::string& failure, double velocity_in_use = -1.0);
 
 }  // namespace fluidbed

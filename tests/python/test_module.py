@@ -284,8 +284,11 @@ def test_a_blow_up_raises_in_words_and_reset_starts_again():
     sim = fluidbed.Simulation(PAPER)
     start = sim.state_hash
     sim.superficial_velocity = 300.0
-    with pytest.raises(fluidbed.SimulationError, match="CFL number"):
+    with pytest.raises(fluidbed.SimulationError, match="CFL number") as e:
         sim.run(until=0.05, progress=False)
+    # The likely cause names the velocity in use, not the scene's.
+    assert "300 m/s superficial in use; the scene's inlet.superficial_velocity is 2.8 m/s" \
+        in str(e.value)
     sim.reset()
     assert sim.state_hash == start and sim.time == 0.0
 

@@ -199,6 +199,15 @@ TEST(SceneChecks, AFailureNamesWhatCrossedItsLimitAsItsLikelyCause) {
       << h;
   EXPECT_NE(h.find("lower inlet.superficial_velocity"), std::string::npos) << h;
   EXPECT_EQ(h.find("contact duration"), std::string::npos) << h;
+  // A control (Python's superficial_velocity) raised the velocity from the scene's: the hint
+  // names the one in use and the jet's at it (in proportion: 78 m/s at 5.2, 150 at 10).
+  const std::string raised = failure_hint(cfl, 10.0);
+  EXPECT_EQ(raised.rfind("; likely cause: the gas velocity: the jet enters at 150 m/s (10 m/s "
+                         "superficial in use; the scene's inlet.superficial_velocity is 5.2 m/s)",
+                         0),
+            0u)
+      << raised;
+  EXPECT_EQ(failure_hint(cfl, 5.2), h);
   refuse_unsafe_scene(load_scene(scene("xu_yu_1997.toml")));
   EXPECT_EQ(failure_hint(overlap), "");
 }
