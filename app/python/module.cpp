@@ -350,7 +350,6 @@ PYBIND11_MODULE(_core, m) {
   // pipe (fluidbed/__init__.py, _call_verb), whose block buffer would hold them to the end.
   std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
   m.attr("__version__") = std::string(app::version());
-  m.attr("version_line") = app::version_line();
 
   static py::exception<InputError> scene_error(m, "SceneError", PyExc_ValueError);
   static py::exception<SimulationFailure> simulation_error(m, "SimulationError",
@@ -399,7 +398,6 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("end_time", [](PySimulation& s) { return s.settings().time.end; })
       .def_property_readonly("dp", [](PySimulation& s) { return s.sim().pressure_drop(); })
       .def_property_readonly("state_hash", [](PySimulation& s) { return s.sim().state_hash(); })
-      .def_property_readonly("has_gas", [](PySimulation& s) { return s.sim().has_gas(); })
       .def_property_readonly("scene_name",
                              [](PySimulation& s) { return s.settings().scene.name; })
       .def_property_readonly("scene_toml", [](PySimulation& s) { return to_toml(s.settings()); })
