@@ -20,6 +20,7 @@ Coupler::Coupler(const GasGrid& grid, const CouplerParams& c, std::size_t partic
       mu_f_(c.gas_viscosity),
       pressure_gradient_force_(c.pressure_gradient_force),
       solid_(static_cast<std::size_t>(grid.cells()), 0.0) {
+  if (c.smoothing_length > 0.0) smoother_.emplace(grid, c.smoothing_length);
   s_.eps.assign(static_cast<std::size_t>(grid.cells()), 1.0);
   s_.cell.assign(particles, 0);
   threads_ = resolve_threads(c.threads);
@@ -77,6 +78,7 @@ void Coupler::porosity_range(const Particles& p, int t, std::size_t b, std::size
 const std::vector<double>& Coupler::finish_porosity(double time) {
   std::fill(solid_.begin(), solid_.end(), 0.0);
   sums_.add_to(solid_, nullptr);
+  if (smoother_) smoother_->apply(solid_);
   porosity_from_solid(grid_, solid_, s_.eps);
   for (std::size_t c = 0; c < s_.eps.size(); ++c) {
     if (!(s_.eps[c] > 0.0 && s_.eps[c] <= 1.0 + 1e-12)) {

@@ -5,11 +5,13 @@
 // Newton's third law (eq 21) holds exactly: each particle's drag is computed once per particle
 // step, applied to the particle in the next step, and summed per cell (averaged over the particle
 // steps of one gas step) as the force F the gas feels in that cell.
+#include <optional>
 #include <vector>
 
 #include "cfd/gas_grid.hpp"
 #include "coupling/block_sums.hpp"
 #include "coupling/porosity.hpp"
+#include "coupling/void_fraction_smoothing.hpp"
 #include "dem/particles.hpp"
 
 namespace fluidbed {
@@ -23,6 +25,9 @@ struct CouplerParams {
   double gas_viscosity = 1.8e-5;   // Pa s
   // Model A (model.md 2.1): the particles feel drag and -V grad p; false: drag alone.
   bool pressure_gradient_force = true;
+  // m: the void fraction smoothed over this length (coupling/void_fraction_smoothing.hpp);
+  // 0: each cell's exact share (eq 22).
+  double smoothing_length = 0.0;
   int threads = 1;                 // inside a step; 0: one per core
 };
 
@@ -39,7 +44,8 @@ class Coupler {
  public:
   Coupler(const GasGrid& grid, const CouplerParams& params, std::size_t particles);
 
-  // Eq 22: the porosity of every cell from the particles' positions. Throws SimulationFailure
+  // Eq 22: the porosity of every cell from the particles' positions (the solid volume smoothed
+  // first when CouplerParams::smoothing_length > 0). Throws SimulationFailure
   // naming the cell when a porosity leaves (0, 1].
   // `split`: each thread's particles (DemSolver::split(), so each particle's data stays on the
   // core that stepped it); empty: even blocks. Results are the same bits for any thread count.
@@ -115,6 +121,7 @@ class Coupler {
   BlockCellSums drag_sums_;  // idem: drag
   std::vector<double> cell_ux_, cell_uy_, cell_gx_, cell_gy_, ln_eps_;  // per cell
   std::vector<double> solid_;
+  std::optional<VoidFractionSmoother> smoother_;  // CouplerParams::smoothing_length > 0
   // What a restart needs (see CouplingState): per cell eps; per particle, frozen at the last gas
   // step, the cell of its centre, the gas velocity there (m/s), the drag coefficient (kg/s) and
   // the force that does not depend on the slip (N); the drag of the next step and the drags felt

@@ -28,6 +28,8 @@ enum class Displacement { Incremental, Geometric };
 enum class Integrator { Newmark, VelocityVerlet, SymplecticEuler };
 // What the bottom of the bed lets in.
 enum class InletKind { Jet, Uniform, None };
+// How the gas cells' void fraction is taken from the spheres.
+enum class VoidFraction { Exact, Smoothed };
 
 // The table of each option (specialised below).
 template <class E>
@@ -81,6 +83,17 @@ struct Options<InletKind> {
       {"jet", InletKind::Jet, "a plug through a slot at the centre of the bottom (the paper)"},
       {"uniform", InletKind::Uniform, "a distributor over the whole bottom"},
       {"none", InletKind::None, "a closed bottom: the gas at rest"},
+  }};
+};
+
+template <>
+struct Options<VoidFraction> {
+  static constexpr std::array<OptionEntry<VoidFraction>, 2> entries{{
+      {"exact", VoidFraction::Exact,
+       "each sphere's exact share of volume in the cells it straddles (eq 22)"},
+      {"smoothed", VoidFraction::Smoothed,
+       "the exact shares smoothed over coupling.void_fraction_length (1 - L^2 laplacian, as "
+       "Lethe's l2 smoothing length): the same total, no cell-to-cell jumps on fine grids"},
   }};
 };
 

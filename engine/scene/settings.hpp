@@ -126,6 +126,10 @@ struct CouplingSettings {
   // The gas is solved every this many particle steps (the paper: 1), or sooner while it is fast:
   // a gas step whose CFL number would exceed 0.8 is taken early (Simulation::kGasCflTarget).
   int particle_steps_per_gas_step = 1;
+  // The void fraction the gas and the drag see (eq 22): each cell's exact share of the spheres,
+  // or those shares smoothed over a length (coupling/void_fraction_smoothing.hpp).
+  VoidFraction void_fraction = VoidFraction::Exact;
+  double void_fraction_length = 0.0;  // m, L of the smoothing; only with "smoothed"
 };
 
 // A point where the gas pressure is recorded (diagnostics.probes), inside the gas domain.
@@ -314,6 +318,9 @@ void visit_fields(CouplingSettings& s, V&& v) {
     {"", any, "model A: particles feel -V grad p besides drag (false: the paper's printed form)"});
   v("particle_steps_per_gas_step", s.particle_steps_per_gas_step,
     {"", at_least(1), "the gas is solved every this many particle steps (or sooner, by CFL)"});
+  v("void_fraction", s.void_fraction, {"", any, "how the gas cells' void fraction is found"});
+  v("void_fraction_length", s.void_fraction_length,
+    {"m", non_negative, "\"smoothed\" void fraction: the smoothing length L (0 with \"exact\")"});
 }
 
 template <class V>

@@ -148,6 +148,13 @@ void validate(const Settings& s) {
              "makes gas cells smaller than a particle (cells must be at least one "
              "particles.diameter wide and high)");
   }
+  const auto& c = s.coupling;
+  if (c.void_fraction == VoidFraction::Smoothed && !(c.void_fraction_length > 0.0))
+    refuse("coupling.void_fraction_length",
+           "must be positive with coupling.void_fraction = \"smoothed\" (the smoothing length, m)");
+  if (c.void_fraction == VoidFraction::Exact && c.void_fraction_length != 0.0)
+    refuse("coupling.void_fraction_length",
+           "is set but coupling.void_fraction is \"exact\" (set it to \"smoothed\" to use it)");
   // Each probe inside the gas domain (the bed's box; on its walls allowed).
   for (std::size_t k = 0; k < s.diagnostics.probes.size(); ++k) {
     const ProbePoint& q = s.diagnostics.probes[k];

@@ -63,6 +63,8 @@ CouplerParams coupler_params_for(const Settings& s) {
   c.gas_density = s.gas.density;
   c.gas_viscosity = s.gas.viscosity;
   c.pressure_gradient_force = s.coupling.pressure_gradient_force;
+  if (s.coupling.void_fraction == VoidFraction::Smoothed)
+    c.smoothing_length = s.coupling.void_fraction_length;
   c.threads = s.threads;
   return c;
 }

@@ -167,6 +167,24 @@ TEST(Scene, KeysThatFollowAnotherAreLeftOutUntilSet) {
             std::string::npos);
 }
 
+TEST(Scene, SmoothedVoidFractionNeedsItsLengthAndOnlyIt) {
+  const Settings plain = parse_scene("", "test.toml");
+  EXPECT_EQ(plain.coupling.void_fraction, VoidFraction::Exact);
+  const Settings smoothed = parse_scene(
+      "", "test.toml", {"coupling.void_fraction=\"smoothed\"", "coupling.void_fraction_length=0.0015"});
+  EXPECT_EQ(smoothed.coupling.void_fraction, VoidFraction::Smoothed);
+  EXPECT_DOUBLE_EQ(smoothed.coupling.void_fraction_length, 0.0015);
+  EXPECT_NE(error_of("", {"coupling.void_fraction=\"smoothed\""}).find("coupling.void_fraction_length"),
+            std::string::npos);
+  EXPECT_NE(error_of("", {"coupling.void_fraction_length=0.002"}).find("\"exact\""),
+            std::string::npos);
+  EXPECT_NE(error_of("", {"coupling.void_fraction=\"blurred\""}).find("exact, smoothed"),
+            std::string::npos);
+  EXPECT_NE(error_of("", {"coupling.void_fraction=\"smoothed\"", "coupling.void_fraction_length=-1"})
+                .find("coupling.void_fraction_length"),
+            std::string::npos);
+}
+
 TEST(Scene, PackingFrictionIsThePackingsOwn) {
   // Lethe's loading: packed with rolling friction 0.2, fluidized with 0.025.
   const Settings bed = parse_scene("[particles]\nplacement = 'packed'\n", "t.toml",
