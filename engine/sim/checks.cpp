@@ -167,6 +167,15 @@ std::string describe_check(const Settings& s, const SceneCheck& c) {
       line("U / U_mf", fmt("%.3g", s.inlet.superficial_velocity / f.umf_wen_yu));
     line("gas cell / d",
          fmt("%.3g", f.cell_dx_over_d) + " wide, " + fmt("%.3g", f.cell_dy_over_d) + " high");
+    const auto& cp = s.coupling;
+    line("void fraction",
+         cp.void_fraction == VoidFraction::Smoothed
+             ? fmt("smoothed over %.3g m", cp.void_fraction_length) + " (" +
+                   fmt("%.3g", cp.void_fraction_length / (s.domain.width / s.gas.cells_x)) +
+                   " cells wide, " +
+                   fmt("%.3g", cp.void_fraction_length / (s.domain.height / s.gas.cells_y)) +
+                   " high; " + fmt("%.3g d", cp.void_fraction_length / s.particles.diameter) + ")"
+             : std::string("each cell's exact share of the spheres (eq 22)"));
     line("gas step dt_gas",
          fmt("%.4g s", f.gas_dt) + " (time.dt x coupling.particle_steps_per_gas_step)");
     line("gas CFL at the jet velocity", fmt("%.3g", f.gas_cfl_at_jet) +

@@ -110,6 +110,15 @@ TEST(SceneChecks, CheckPrintsEveryShippedScenesFiguresAndExitsZero) {
     }
     EXPECT_EQ(r.out.find("refused"), std::string::npos) << name << "\n" << r.out;
   }
+  // The smoothed void fraction's length in cells and diameters (van Wachem's 5 mm cells, 1.545 mm
+  // spheres: 1.5 mm is 0.3 cells and 0.971 d).
+  const CommandResult r = run_fluidbed(
+      "check " + scene("van_wachem_2001.toml") +
+          " --set coupling.void_fraction=smoothed --set coupling.void_fraction_length=0.0015",
+      "check-smoothed");
+  EXPECT_NE(r.out.find("smoothed over 0.0015 m (0.3 cells wide, 0.3 high; 0.971 d)"),
+            std::string::npos)
+      << r.out;
 }
 
 TEST(SceneChecks, CheckAndRunRefuseTheLargeStepInOneLine) {
