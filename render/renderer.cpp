@@ -9,16 +9,22 @@ void Renderer::Impl::draw_bed(const Snapshot& s, const BedView& bed, const Frame
                               bool cut_top) {
   rect(under, bed.inside, th.bed);
   const bool gas = s.has_gas() && s.gas_ux.size() == static_cast<std::size_t>(s.nx * s.ny);
-  const double dx = gas ? s.width / s.nx : 0.0, dy = gas ? s.height / s.ny : 0.0;
+  // The gas cells from the grid's bottom; a plenum's (below the floor, y < 0) are not drawn.
+  const double dx = gas ? s.width / s.nx : 0.0,
+               dy = gas ? (s.height - s.gas_bottom) / s.ny : 0.0;
+  const auto row_y = [&](int j) { return s.gas_bottom + j * dy; };  // m, the row's lower edge
   if (gas && rs.porosity_background && s.porosity.size() == s.gas_ux.size()) {
     for (int j = 0; j < s.ny; ++j)
       for (int i = 0; i < s.nx; ++i) {
+        if (row_y(j + 1) <= 0.0) continue;
         const double eps = s.porosity[static_cast<std::size_t>(j * s.nx + i)];
         const auto t = f(std::clamp((eps - 0.35) / 0.65, 0.0, 1.0));
         const Rgb& a = th.porous_dense;
         const Rgb& b = th.porous_void;
         const Rgba c{a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t, 1};
-        rect(under, {bed.px(i * dx), bed.py((j + 1) * dy), bed.px((i + 1) * dx), bed.py(j * dy)},
+        rect(under,
+             {bed.px(i * dx), bed.py(row_y(j + 1)), bed.px((i + 1) * dx),
+              bed.py(std::max(row_y(j), 0.0))},
              c);
       }
   }
@@ -73,6 +79,8 @@ void Renderer::Impl::draw_bed(const Snapshot& s, const BedView& bed, const Frame
     for (int j = 0; j < s.ny; ++j)
       for (int i = 0; i < s.nx; ++i) {
         const auto c = static_cast<std::size_t>(j * s.nx + i);
+        const double centre_y = row_y(j) + 0.5 * dy;
+        if (centre_y < 0.0) continue;
         const double ux = s.gas_ux[c], uy = s.gas_uy[c];
         const double speed = std::hypot(ux, uy);
         if (!(speed > 0.0)) continue;
@@ -82,8 +90,8 @@ void Renderer::Impl::draw_bed(const Snapshot& s, const BedView& bed, const Frame
             rs.gas_arrows_coloured
                 ? colour_at(ColourMap::inferno, speed / std::max(rs.gas_colour_max, 1e-12))
                 : th.gas_arrow;
-        add_arrow(arrow_list, bed.px((i + 0.5) * dx) - vx / 2, bed.py((j + 0.5) * dy) - vy / 2, vx,
-                  vy, shaft, col);
+        add_arrow(arrow_list, bed.px((i + 0.5) * dx) - vx / 2, bed.py(centre_y) - vy / 2, vx, vy,
+                  shaft, col);
       }
   }
   // Particle velocity from each centre: the reference speed spans three diameters; capped at

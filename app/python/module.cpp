@@ -187,15 +187,15 @@ class PySimulation {
     if (!s.has_gas()) return py::none();
     const py::ssize_t nx = s.nx, ny = s.ny;
     py::dict d;
-    // Cell centres: (k + 1/2) cells of length/count.
-    const auto centres = [](py::ssize_t count, double length) {
+    // Cell centres: from `from`, (k + 1/2) cells of length/count (y from a plenum's bottom).
+    const auto centres = [](py::ssize_t count, double from, double length) {
       std::vector<double> c(static_cast<std::size_t>(count));
       for (std::size_t k = 0; k < c.size(); ++k)
-        c[k] = (static_cast<double>(k) + 0.5) * length / static_cast<double>(count);
+        c[k] = from + (static_cast<double>(k) + 0.5) * length / static_cast<double>(count);
       return copy_array(c, {count});
     };
-    d["x"] = centres(nx, s.width);
-    d["y"] = centres(ny, s.height);
+    d["x"] = centres(nx, 0.0, s.width);
+    d["y"] = centres(ny, s.gas_bottom, s.height - s.gas_bottom);
     d["u"] = copy_array(s.gas_ux, {ny, nx});
     d["v"] = copy_array(s.gas_uy, {ny, nx});
     d["p"] = copy_array(s.pressure, {ny, nx});

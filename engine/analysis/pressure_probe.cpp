@@ -21,7 +21,7 @@ Between between_centres(double x, double d, int n) {
 }  // namespace
 
 double probe_pressure(const GasGrid& g, const std::vector<double>& p, double x, double y) {
-  const Between i = between_centres(x, g.dx(), g.nx), j = between_centres(y, g.dy(), g.ny);
+  const Between i = between_centres(x, g.dx(), g.nx), j = between_centres(y - g.bottom, g.dy(), g.ny);
   const auto at = [&](int di, int dj) {
     return p[static_cast<std::size_t>(g.index(i.lower + di, j.lower + dj))];
   };

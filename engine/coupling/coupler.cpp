@@ -125,11 +125,11 @@ void Coupler::freeze_range(Particles& p, std::size_t begin, std::size_t end) {
   constexpr double kPi = std::numbers::pi;
   // Three passes over the range: the gas at each particle (gathers from the cells), the drag
   // coefficient (pure arithmetic over arrays: vectorised), the forces.
-  const double dx = grid_.dx(), dy = grid_.dy();
+  const double dx = grid_.dx(), dy = grid_.dy(), bottom = grid_.bottom;
   const int nx = grid_.nx, ny = grid_.ny;
   const bool depth = p.has_depth();
   for (std::size_t i = begin; i < end; ++i) {
-    const int c = GasGrid::along(p.y[i], dy, ny) * nx + GasGrid::along(p.x[i], dx, nx);
+    const int c = GasGrid::along(p.y[i] - bottom, dy, ny) * nx + GasGrid::along(p.x[i], dx, nx);
     s_.cell[i] = c;
     s_.gas_ux[i] = cell_ux_[c];
     s_.gas_uy[i] = cell_uy_[c];

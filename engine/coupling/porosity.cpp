@@ -76,8 +76,9 @@ int particle_volume_shares(const GasGrid& g, double x, double y, double R, Volum
   }
   int dj = 0;
   double ay = 0.0;
-  const double below = y - j * dy;
-  const double above = (j + 1) * dy - y;
+  const double yg = y - g.bottom;  // from the grid's bottom
+  const double below = yg - j * dy;
+  const double above = (j + 1) * dy - yg;
   if (below < R && j > 0) {
     dj = -1;
     ay = below;
@@ -144,7 +145,7 @@ inline double cap_volume_select(double R, double a, bool crossed) {
 
 FLUIDBED_SIMD_CLONES void share_geometry(const GasGrid& g, std::size_t n, const double* x,
                                          const double* y, const double* R, ShareGeometry& out) {
-  const double dx = g.dx(), dy = g.dy();
+  const double dx = g.dx(), dy = g.dy(), bottom = g.bottom;
   const int nx = g.nx, ny = g.ny;
   int* cell = out.cell.data();
   int* sx = out.step_x.data();
@@ -156,7 +157,8 @@ FLUIDBED_SIMD_CLONES void share_geometry(const GasGrid& g, std::size_t n, const 
 #pragma omp simd
   for (std::size_t k = 0; k < n; ++k) {
     const double r = R[k];
-    const int i = GasGrid::along(x[k], dx, nx), j = GasGrid::along(y[k], dy, ny);
+    const double yk = y[k] - bottom;  // from the grid's bottom
+    const int i = GasGrid::along(x[k], dx, nx), j = GasGrid::along(yk, dy, ny);
     cell[k] = j * nx + i;
     const double left = x[k] - i * dx, right = (i + 1) * dx - x[k];
     const bool to_left = (left < r) & (i > 0);
@@ -165,7 +167,7 @@ FLUIDBED_SIMD_CLONES void share_geometry(const GasGrid& g, std::size_t n, const 
     const double a = to_left ? left : (to_right ? right : 0.0);
     ax[k] = a;
     cx[k] = cap_volume_select(r, a, to_left | to_right);
-    const double below = y[k] - j * dy, above = (j + 1) * dy - y[k];
+    const double below = yk - j * dy, above = (j + 1) * dy - yk;
     const bool down = (below < r) & (j > 0);
     const bool up = !down & (above < r) & (j + 1 < ny);
     sy[k] = down ? -1 : (up ? 1 : 0);

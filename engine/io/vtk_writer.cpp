@@ -133,17 +133,18 @@ void write_particles_vtp(const std::string& path, const Snapshot& s) {
 
 namespace {
 
-// An ImageData file of nx x ny cells of dx x dy (x the slab's thickness) at the snapshot's time:
+// An ImageData file of nx x ny cells of dx x dy (x the slab's thickness) from (0, y0) at the
+// snapshot's time:
 // `cell_data` writes the cells' arrays (`scalars`, `vectors`: the attributes ParaView shows first).
 template <class CellData>
 void write_image_vti(const std::string& path, const Snapshot& s, int nx, int ny, double dx,
-                     double dy, const char* attributes, CellData cell_data) {
+                     double dy, double y0, const char* attributes, CellData cell_data) {
   const std::string extent = "0 " + std::to_string(nx) + " 0 " + std::to_string(ny) + " 0 1";
   std::ostringstream o;
   o << "<?xml version=\"1.0\"?>\n"
     << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" "
        "header_type=\"UInt32\">\n"
-    << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"0 0 0\" Spacing=\""
+    << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"0 " << number(y0) << " 0\" Spacing=\""
     << number(dx) << " " << number(dy) << " " << number(s.thickness) << "\">\n";
   time_field(o, s.time);
   o << "    <Piece Extent=\"" << extent << "\">\n"
@@ -161,7 +162,8 @@ void write_image_vti(const std::string& path, const Snapshot& s, int nx, int ny,
 void write_gas_vti(const std::string& path, const Snapshot& s) {
   if (!s.has_gas()) return;
   const auto cells = static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny);
-  write_image_vti(path, s, s.nx, s.ny, s.width / s.nx, s.height / s.ny,
+  write_image_vti(path, s, s.nx, s.ny, s.width / s.nx, (s.height - s.gas_bottom) / s.ny,
+                  s.gas_bottom,
                   "Scalars=\"porosity\" Vectors=\"velocity\"",
                   [&](std::ostringstream& o, const char* in) {
                     const std::vector<double> none;
@@ -173,7 +175,7 @@ void write_gas_vti(const std::string& path, const Snapshot& s) {
 
 void write_void_vti(const std::string& path, const Snapshot& s) {
   if (s.void_fraction.empty()) return;
-  write_image_vti(path, s, s.void_nx, s.void_ny, s.void_dx, s.void_dy,
+  write_image_vti(path, s, s.void_nx, s.void_ny, s.void_dx, s.void_dy, 0.0,
                   "Scalars=\"void_fraction\"", [&](std::ostringstream& o, const char* in) {
                     const std::vector<double> eps(s.void_fraction.begin(), s.void_fraction.end());
                     floats(o, "void_fraction", 1, eps, in);

@@ -117,6 +117,9 @@ struct InletSettings {
   // Jets along the bottom, slot k centred at (k + 1/2) width / jets (1: the paper's central
   // jet; a bed n times wider with n jets is n paper beds side by side).
   int jets = 1;
+  // m: the gas enters this far below the particles' floor, which it crosses freely (Lethe's van
+  // Wachem example: 4 cm under a floor wall permeable to the gas). 0: at the floor.
+  double plenum_height = 0.0;
 };
 
 struct CouplingSettings {
@@ -310,6 +313,8 @@ void visit_fields(InletSettings& s, V&& v) {
     {"m/s", non_negative, "gas velocity U, the mean over the bottom"});
   v("jet_width", s.jet_width, {"m", positive, "width of each jet's slot"});
   v("jets", s.jets, {"", at_least(1), "jet slots, one every width / jets"});
+  v("plenum_height", s.plenum_height,
+    {"m", non_negative, "gas below the particles' floor, which it crosses freely (0: none)"});
 }
 template <class V>
 void visit_fields(CouplingSettings& s, V&& v) {

@@ -143,11 +143,14 @@ void validate(const Settings& s) {
   if (g.enabled) {
     // Porosity counts each sphere in the cells it straddles; the exact split assumes a sphere
     // is cut by at most one grid line each way.
-    if (d.width / g.cells_x < p.diameter || d.height / g.cells_y < p.diameter)
+    if (d.width / g.cells_x < p.diameter ||
+        (d.height + s.inlet.plenum_height) / g.cells_y < p.diameter)
       refuse("gas.cells_x",
              "makes gas cells smaller than a particle (cells must be at least one "
              "particles.diameter wide and high)");
   }
+  if (!g.enabled && s.inlet.plenum_height > 0.0)
+    refuse("inlet.plenum_height", "is set but the scene has no gas ([gas]) to blow through it");
   const auto& c = s.coupling;
   if (c.void_fraction == VoidFraction::Smoothed && !(c.void_fraction_length > 0.0))
     refuse("coupling.void_fraction_length",
@@ -163,9 +166,11 @@ void validate(const Settings& s) {
     if (!g.enabled)
       refuse("diagnostics.probes",
              std::string(where) + " but the scene has no gas ([gas]) to measure");
-    if (q.x < 0.0 || q.x > d.width || q.y < 0.0 || q.y > d.height) {
+    const double bottom = -s.inlet.plenum_height;
+    if (q.x < 0.0 || q.x > d.width || q.y < bottom || q.y > d.height) {
       char domain[96];
-      std::snprintf(domain, sizeof domain, "x in [0, %g] m, y in [0, %g] m", d.width, d.height);
+      std::snprintf(domain, sizeof domain, "x in [0, %g] m, y in [%g, %g] m", d.width, bottom,
+                    d.height);
       refuse("diagnostics.probes",
              std::string(where) + " outside the gas domain (" + domain + ")");
     }

@@ -107,7 +107,8 @@ SceneCheck check_scene(const Settings& s) {
   f.archimedes = d * d * d * g.density * (p.density - g.density) * s.physics.gravity /
                  (g.viscosity * g.viscosity);
   f.umf_wen_yu = wen_yu_umf(d, p.density, g.density, g.viscosity, s.physics.gravity);
-  const double dx = s.domain.width / g.cells_x, dy = s.domain.height / g.cells_y;
+  const double dx = s.domain.width / g.cells_x,
+               dy = (s.domain.height + s.inlet.plenum_height) / g.cells_y;
   f.cell_dx_over_d = dx / d;
   f.cell_dy_over_d = dy / d;
   f.gas_dt = s.time.dt * s.coupling.particle_steps_per_gas_step;
@@ -168,14 +169,19 @@ std::string describe_check(const Settings& s, const SceneCheck& c) {
     line("gas cell / d",
          fmt("%.3g", f.cell_dx_over_d) + " wide, " + fmt("%.3g", f.cell_dy_over_d) + " high");
     const auto& cp = s.coupling;
+    const double dx = f.cell_dx_over_d * s.particles.diameter,
+                 dy = f.cell_dy_over_d * s.particles.diameter;  // m, a gas cell
     line("void fraction",
          cp.void_fraction == VoidFraction::Smoothed
              ? fmt("smoothed over %.3g m", cp.void_fraction_length) + " (" +
-                   fmt("%.3g", cp.void_fraction_length / (s.domain.width / s.gas.cells_x)) +
+                   fmt("%.3g", cp.void_fraction_length / dx) +
                    " cells wide, " +
-                   fmt("%.3g", cp.void_fraction_length / (s.domain.height / s.gas.cells_y)) +
+                   fmt("%.3g", cp.void_fraction_length / dy) +
                    " high; " + fmt("%.3g d", cp.void_fraction_length / s.particles.diameter) + ")"
              : std::string("each cell's exact share of the spheres (eq 22)"));
+    if (s.inlet.plenum_height > 0.0)
+      line("plenum", fmt("%.3g m", s.inlet.plenum_height) + " of gas under the floor (" +
+                         fmt("%.3g", s.inlet.plenum_height / dy) + " cells)");
     line("gas step dt_gas",
          fmt("%.4g s", f.gas_dt) + " (time.dt x coupling.particle_steps_per_gas_step)");
     line("gas CFL at the jet velocity", fmt("%.3g", f.gas_cfl_at_jet) +

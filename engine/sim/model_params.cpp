@@ -33,7 +33,8 @@ GasGrid gas_grid_for(const Settings& s) {
   g.nx = s.gas.cells_x;
   g.ny = s.gas.cells_y;
   g.width = s.domain.width;
-  g.height = s.domain.height;
+  g.height = s.domain.height + s.inlet.plenum_height;
+  g.bottom = -s.inlet.plenum_height;
   g.depth = s.domain.thickness;
   return g;
 }

@@ -9,8 +9,9 @@ namespace fluidbed {
 
 namespace {
 // Version 3 adds a thick bed's velocity and force across the slab, spin and torque about x and
-// y; version 2 (a checkpoint written before them) loads with those empty.
-constexpr char kSnapshotTag[8] = {'F', 'L', 'B', 'S', 'N', 'A', 'P', '3'};
+// y; version 2 (a checkpoint written before them) loads with those empty. Version 4 adds the gas
+// grid's bottom (a plenum); versions 2 and 3 load with 0.
+constexpr char kSnapshotTag[8] = {'F', 'L', 'B', 'S', 'N', 'A', 'P', '4'};
 constexpr std::size_t kTagVersion = sizeof kSnapshotTag - 1;
 
 // Snapshot or const Snapshot: pointers to its vectors across the slab, in file order.
@@ -37,14 +38,16 @@ void save_snapshot(std::ostream& out, const Snapshot& s) {
   put_vec(out, s.void_fraction);
   put_vec(out, s.bubble_edges);
   for (const std::vector<double>* v : depth_vectors(s)) put_vec(out, *v);
+  put(out, s.gas_bottom);
 }
 
 void load_snapshot(BinarySource& in, Snapshot& s) {
   char tag[sizeof kSnapshotTag];
   in.stream().read(tag, sizeof tag);
-  const bool version2 = in.stream() && std::memcmp(tag, kSnapshotTag, kTagVersion) == 0 &&
-                        tag[kTagVersion] == '2';
-  if (!in.stream() || (!version2 && std::memcmp(tag, kSnapshotTag, sizeof tag) != 0))
+  const bool earlier = in.stream() && std::memcmp(tag, kSnapshotTag, kTagVersion) == 0 &&
+                       (tag[kTagVersion] == '2' || tag[kTagVersion] == '3');
+  const bool version2 = earlier && tag[kTagVersion] == '2';
+  if (!in.stream() || (!earlier && std::memcmp(tag, kSnapshotTag, sizeof tag) != 0))
     in.fail("not a snapshot's");
   for (double* v : {&s.time, &s.dt, &s.width, &s.height, &s.thickness, &s.jet_width,
                     &s.superficial_velocity, &s.jet_velocity, &s.dp, &s.max_overlap_ratio,
@@ -70,6 +73,7 @@ void load_snapshot(BinarySource& in, Snapshot& s) {
     else
       in.get_vec(*v);
   }
+  s.gas_bottom = earlier ? 0.0 : in.get<double>();
 }
 
 void take_snapshot(const Simulation& sim, Snapshot& out) {
@@ -113,6 +117,7 @@ void take_snapshot(const Simulation& sim, Snapshot& out) {
     out.jet_velocity = g->jet_velocity();
     out.nx = g->grid().nx;
     out.ny = g->grid().ny;
+    out.gas_bottom = g->grid().bottom;
     const auto cells = static_cast<std::size_t>(g->grid().cells());
     out.gas_ux.resize(cells);
     out.gas_uy.resize(cells);
@@ -122,6 +127,7 @@ void take_snapshot(const Simulation& sim, Snapshot& out) {
   } else {
     out.inlet_kind = InletKind::None;
     out.nx = out.ny = 0;
+    out.gas_bottom = 0.0;
     out.gas_ux.clear();
     out.gas_uy.clear();
     out.porosity.clear();

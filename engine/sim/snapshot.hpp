@@ -47,6 +47,9 @@ struct Snapshot {
   std::vector<double> initial_y;        // m, height at the start of the run (mixing colours)
   // Gas (empty without gas): nx * ny cells, c = j * nx + i.
   int nx = 0, ny = 0;
+  // m: the grid's bottom, below the floor (y = 0) by a plenum's height; the cells are
+  // width / nx wide and (height - gas_bottom) / ny high.
+  double gas_bottom = 0.0;
   std::vector<double> gas_ux, gas_uy;   // m/s, interstitial velocity at cell centres
   std::vector<double> porosity;         // -
   std::vector<double> pressure;         // Pa

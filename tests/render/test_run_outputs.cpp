@@ -233,8 +233,9 @@ TEST(VtkParticles, AThickBedsVectorsHaveTheirPartsAcrossTheSlab) {
   EXPECT_NEAR(mono.at("torque").values[5], -5e-5, 1e-7 * 5e-5);  // Float32 in the file
 }
 
-// A snapshot's bytes give it back whole, a thick bed's parts across the slab included; one saved
-// before those parts existed (version 2: the same bytes without them) loads with them empty.
+// A snapshot's bytes give it back whole, a thick bed's parts across the slab and a plenum's
+// depth included; one saved before those parts existed (version 3: without the plenum; version
+// 2: without the slab's parts either) loads with them empty or 0.
 TEST(SnapshotBytes, RoundTripKeepsTheSlabsPartsAndReadsVersion2) {
   fluidbed::Snapshot s = empty_box();
   add_particle(s, {0.01, 0.02, 0.002, 0.1, 0.2, 0.3, 0.4, 5e-5});
@@ -245,6 +246,7 @@ TEST(SnapshotBytes, RoundTripKeepsTheSlabsPartsAndReadsVersion2) {
   s.spin_y = {3.0};
   s.torque_x = {1e-5};
   s.torque_y = {3e-5};
+  s.gas_bottom = -0.04;
   std::ostringstream out;
   fluidbed::save_snapshot(out, s);
   std::istringstream in(out.str());
@@ -252,6 +254,7 @@ TEST(SnapshotBytes, RoundTripKeepsTheSlabsPartsAndReadsVersion2) {
   fluidbed::Snapshot back;
   fluidbed::load_snapshot(src, back);
   EXPECT_EQ(back.z, s.z);
+  EXPECT_EQ(back.gas_bottom, -0.04);
   EXPECT_EQ(back.vz, s.vz);
   EXPECT_EQ(back.fz, s.fz);
   EXPECT_EQ(back.spin_x, s.spin_x);
@@ -260,15 +263,28 @@ TEST(SnapshotBytes, RoundTripKeepsTheSlabsPartsAndReadsVersion2) {
   EXPECT_EQ(back.torque_y, s.torque_y);
   EXPECT_EQ(back.vx, s.vx);
 
-  // Version 2: tag ...'2', and no six arrays at the end (each an empty array is its 8-byte
-  // length alone).
+  // Version 3: tag ...'3', and no plenum's depth at the end (8 bytes).
+  std::string bytes = out.str();
+  ASSERT_EQ(bytes.substr(0, 8), "FLBSNAP4");
+  bytes[7] = '3';
+  bytes.resize(bytes.size() - 8);
+  {
+    std::istringstream in3(bytes);
+    fluidbed::BinarySource src3(in3, "test");
+    fluidbed::Snapshot v3;
+    v3.gas_bottom = -1.0;  // a reused snapshot: set by the load
+    fluidbed::load_snapshot(src3, v3);
+    EXPECT_EQ(v3.gas_bottom, 0.0);
+    EXPECT_EQ(v3.vz, s.vz);
+  }
+  // Version 2: tag ...'2', and no six arrays at the end either (each an empty array is its
+  // 8-byte length alone).
   for (auto* v : {&s.vz, &s.fz, &s.spin_x, &s.spin_y, &s.torque_x, &s.torque_y}) v->clear();
-  std::ostringstream v3;
-  fluidbed::save_snapshot(v3, s);
-  std::string bytes = v3.str();
-  ASSERT_EQ(bytes.substr(0, 8), "FLBSNAP3");
+  std::ostringstream v4;
+  fluidbed::save_snapshot(v4, s);
+  bytes = v4.str();
   bytes[7] = '2';
-  bytes.resize(bytes.size() - 6 * 8);
+  bytes.resize(bytes.size() - 6 * 8 - 8);
   std::istringstream in2(bytes);
   fluidbed::BinarySource src2(in2, "test");
   fluidbed::Snapshot old;
