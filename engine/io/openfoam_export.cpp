@@ -542,13 +542,13 @@ OpenfoamCase write_openfoam_case(const Settings& s, const std::string& dir,
   if (s.contact.wall_friction)
     throw InputError("contact.wall_friction: the DPMFoam case's walls take the particles' "
                      "friction, so walls with their own are not exported (leave it unset)");
-  if (s.inlet.plenum_height > 0.0)
-    throw InputError("inlet.plenum_height: the DPMFoam case's mesh starts at the particles' "
-                     "floor, so a plenum under it is not exported (set it to 0)");
   if (slab_has_depth(s.domain, s.particles.diameter))
     throw InputError("domain.thickness: the DPMFoam case keeps its spheres on the mid-plane "
                      "(empty front and back patches), so a thick slab, whose particles move in "
                      "3D, is not exported (export it --to liggghts)");
+  if (s.inlet.plenum_height > 0.0)
+    throw InputError("inlet.plenum_height: the DPMFoam case's mesh starts at the particles' "
+                     "floor, so a plenum under it is not exported (set it to 0)");
   if (s.inlet.kind == InletKind::Jet && s.inlet.jets != 1)
     throw InputError("inlet.jets = " + std::to_string(s.inlet.jets) +
                      ": the DPMFoam case has one central jet slot (export a bed with jets = 1)");

@@ -11,6 +11,7 @@
 #include "cfd/gas_grid.hpp"
 #include "core/errors.hpp"
 #include "coupling/porosity.hpp"
+#include "io/openfoam_export.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/model_params.hpp"
 
@@ -112,4 +113,15 @@ TEST(Plenum, TheSceneKeyExtendsTheGasGridBelowTheFloor) {
             std::string::npos);
   EXPECT_NE(plenum_error("[gas]\n", {"inlet.plenum_height=-0.01"}).find("inlet.plenum_height"),
             std::string::npos);
+}
+
+TEST(Plenum, TheDpmFoamExportRefusesIt) {
+  // The case's mesh starts at the particles' floor: a plenum is refused by name, not dropped.
+  const Settings s = parse_scene("[gas]\n", "t.toml", {"inlet.plenum_height=0.04"});
+  try {
+    write_openfoam_case(s, "/nonexistent-plenum-case");
+    FAIL() << "exported";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("inlet.plenum_height"), std::string::npos) << e.what();
+  }
 }
