@@ -149,8 +149,6 @@ void validate(const Settings& s) {
              "makes gas cells smaller than a particle (cells must be at least one "
              "particles.diameter wide and high)");
   }
-  if (!g.enabled && s.inlet.plenum_height > 0.0)
-    refuse("inlet.plenum_height", "is set but the scene has no gas ([gas]) to blow through it");
   const auto& c = s.coupling;
   if (c.void_fraction == VoidFraction::Smoothed && !(c.void_fraction_length > 0.0))
     refuse("coupling.void_fraction_length",
