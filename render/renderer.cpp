@@ -10,8 +10,7 @@ void Renderer::Impl::draw_bed(const Snapshot& s, const BedView& bed, const Frame
   rect(under, bed.inside, th.bed);
   const bool gas = s.has_gas() && s.gas_ux.size() == static_cast<std::size_t>(s.nx * s.ny);
   // The gas cells from the grid's bottom; a plenum's (below the floor, y < 0) are not drawn.
-  const double dx = gas ? s.width / s.nx : 0.0,
-               dy = gas ? (s.height - s.gas_bottom) / s.ny : 0.0;
+  const double dx = gas ? s.width / s.nx : 0.0, dy = gas ? s.gas_dy() : 0.0;
   const auto row_y = [&](int j) { return s.gas_bottom + j * dy; };  // m, the row's lower edge
   if (gas && rs.porosity_background && s.porosity.size() == s.gas_ux.size()) {
     for (int j = 0; j < s.ny; ++j)

@@ -82,7 +82,7 @@ void Renderer::Impl::draw_info(const Snapshot& s, const FrameLayout& l, const Re
       colour_bar(bar, ColourMap::inferno, gas, l, th);
       below = bar.y1 + 1.6f * l.font;
     }
-    const auto len = f((s.height - s.gas_bottom) / s.ny * bed.scale);
+    const auto len = f(s.gas_dy() * bed.scale);
     add_arrow(arrow_list, x, below, len, 0.0f, shaft,
               rs.gas_arrows_coloured
                   ? colour_at(ColourMap::inferno, rs.gas_arrow_reference / rs.gas_colour_max)

@@ -17,12 +17,25 @@
 #include <fstream>
 #include <string>
 
+#include "core/errors.hpp"
 #include "dem/dem_solver.hpp"
+#include "scene/scene_loader.hpp"
 #include "scene/settings.hpp"
 
 namespace fluidbed::testing {
 
 constexpr double kPi = 3.14159265358979323846;
+
+// The one-line error a scene text with overrides is refused with ("" when it loads).
+inline std::string scene_error(const std::string& text,
+                               const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_scene(text, "t.toml", overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 // The paper's particle (D = 4 mm, rho = 2700 kg/m^3).
 inline double paper_mass() { return 2700.0 * kPi * 0.004 * 0.004 * 0.004 / 6.0; }

@@ -10,7 +10,6 @@ VoidFractionSmoother::VoidFractionSmoother(const GasGrid& grid, double length)
     : nx_(grid.nx),
       ny_(grid.ny),
       transposed_(grid.nx > grid.ny),
-      length_(length),
       ldlt_(transposed_ ? grid.ny : grid.nx, transposed_ ? grid.nx : grid.ny),
       scratch_(static_cast<std::size_t>(grid.cells()), 0.0) {
   // The solver's grid: its rows of `fast` cells (the band's width) stacked `slow` high.

@@ -30,12 +30,9 @@ class VoidFractionSmoother {
   // Replaces the per-cell field v (the grid's cells, c = j * nx + i) by its smoothed form.
   void apply(std::vector<double>& v) const;
 
-  double length() const { return length_; }
-
  private:
   int nx_, ny_;
   bool transposed_;  // the band runs along y (nx > ny): cells renumbered i * ny + j
-  double length_;
   BandedLdlt ldlt_;
   mutable std::vector<double> scratch_;
 };

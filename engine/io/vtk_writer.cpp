@@ -162,8 +162,7 @@ void write_image_vti(const std::string& path, const Snapshot& s, int nx, int ny,
 void write_gas_vti(const std::string& path, const Snapshot& s) {
   if (!s.has_gas()) return;
   const auto cells = static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny);
-  write_image_vti(path, s, s.nx, s.ny, s.width / s.nx, (s.height - s.gas_bottom) / s.ny,
-                  s.gas_bottom,
+  write_image_vti(path, s, s.nx, s.ny, s.width / s.nx, s.gas_dy(), s.gas_bottom,
                   "Scalars=\"porosity\" Vectors=\"velocity\"",
                   [&](std::ostringstream& o, const char* in) {
                     const std::vector<double> none;

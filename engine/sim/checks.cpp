@@ -107,8 +107,9 @@ SceneCheck check_scene(const Settings& s) {
   f.archimedes = d * d * d * g.density * (p.density - g.density) * s.physics.gravity /
                  (g.viscosity * g.viscosity);
   f.umf_wen_yu = wen_yu_umf(d, p.density, g.density, g.viscosity, s.physics.gravity);
-  const double dx = s.domain.width / g.cells_x,
-               dy = (s.domain.height + s.inlet.plenum_height) / g.cells_y;
+  f.cell_dx = s.domain.width / g.cells_x;
+  f.cell_dy = (s.domain.height + s.inlet.plenum_height) / g.cells_y;
+  const double dx = f.cell_dx, dy = f.cell_dy;
   f.cell_dx_over_d = dx / d;
   f.cell_dy_over_d = dy / d;
   f.gas_dt = s.time.dt * s.coupling.particle_steps_per_gas_step;
@@ -169,8 +170,7 @@ std::string describe_check(const Settings& s, const SceneCheck& c) {
     line("gas cell / d",
          fmt("%.3g", f.cell_dx_over_d) + " wide, " + fmt("%.3g", f.cell_dy_over_d) + " high");
     const auto& cp = s.coupling;
-    const double dx = f.cell_dx_over_d * s.particles.diameter,
-                 dy = f.cell_dy_over_d * s.particles.diameter;  // m, a gas cell
+    const double dx = f.cell_dx, dy = f.cell_dy;
     line("void fraction",
          cp.void_fraction == VoidFraction::Smoothed
              ? fmt("smoothed over %.3g m", cp.void_fraction_length) + " (" +

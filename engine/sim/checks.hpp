@@ -23,6 +23,7 @@ struct SceneFigures {
   double jet_velocity = 0.0;      // m/s, U width / (jets jet_width) for a jet, else U
   double archimedes = 0.0;        // Ar = d^3 rho_g (rho_p - rho_g) g / mu^2
   double umf_wen_yu = 0.0;        // m/s, Wen & Yu (1966)
+  double cell_dx = 0.0, cell_dy = 0.0;  // m, a gas cell (the plenum's rows included)
   double cell_dx_over_d = 0.0;    // gas cell width / particle diameter
   double cell_dy_over_d = 0.0;
   double gas_dt = 0.0;          // s, time.dt x coupling.particle_steps_per_gas_step

@@ -50,6 +50,7 @@ struct Snapshot {
   // m: the grid's bottom, below the floor (y = 0) by a plenum's height; the cells are
   // width / nx wide and (height - gas_bottom) / ny high.
   double gas_bottom = 0.0;
+  double gas_dy() const { return ny > 0 ? (height - gas_bottom) / ny : 0.0; }  // m, a cell's height
   std::vector<double> gas_ux, gas_uy;   // m/s, interstitial velocity at cell centres
   std::vector<double> porosity;         // -
   std::vector<double> pressure;         // Pa

@@ -201,12 +201,7 @@ TEST(Keys, ValidatorRefusesExactlyWhatTheRangesLeaveOut) {
   EXPECT_GT(bounded, 30);
   // The one-line words for each kind of range.
   const auto error_of = [](const std::string& o) {
-    try {
-      parse_scene("", "t.toml", {o});
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+    return fluidbed::testing::scene_error("", {o});
   };
   EXPECT_EQ(error_of("time.dt=0"), "time.dt must be positive (got 0.000000)");
   EXPECT_EQ(error_of("contact.damping=-1"), "contact.damping must not be negative (got -1.000000)");

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "analysis/pressure_probe.hpp"
 #include "cfd/gas_grid.hpp"
 #include "core/errors.hpp"
@@ -29,15 +30,6 @@ GasGrid plenum_grid(double plenum) {
   g.height = 0.12;
   g.bottom = -plenum;
   return g;
-}
-
-std::string plenum_error(const std::string& text, const std::vector<std::string>& set) {
-  try {
-    parse_scene(text, "t.toml", set);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace
@@ -102,17 +94,18 @@ TEST(Plenum, TheSceneKeyExtendsTheGasGridBelowTheFloor) {
   EXPECT_EQ(plain.bottom, 0.0);
   EXPECT_EQ(plain.height, 0.9);
   // A probe may stand in the plenum, not under it.
-  EXPECT_EQ(plenum_error("[gas]\n", {"inlet.plenum_height=0.04",
-                                     "diagnostics.probes=[[0.075, -0.03]]"}),
+  EXPECT_EQ(fluidbed::testing::scene_error(
+                "[gas]\n", {"inlet.plenum_height=0.04", "diagnostics.probes=[[0.075, -0.03]]"}),
             "");
-  EXPECT_NE(plenum_error("[gas]\n", {"inlet.plenum_height=0.04",
-                                     "diagnostics.probes=[[0.075, -0.05]]"})
+  EXPECT_NE(fluidbed::testing::scene_error(
+                "[gas]\n", {"inlet.plenum_height=0.04", "diagnostics.probes=[[0.075, -0.05]]"})
                 .find("y in [-0.04, 0.9] m"),
             std::string::npos);
   // Without gas a plenum means nothing and is left alone: a scene with one runs with its gas
   // switched off (the thick packing test does so with van Wachem's scene).
-  EXPECT_EQ(plenum_error("", {"inlet.plenum_height=0.04"}), "");
-  EXPECT_NE(plenum_error("[gas]\n", {"inlet.plenum_height=-0.01"}).find("inlet.plenum_height"),
+  EXPECT_EQ(fluidbed::testing::scene_error("", {"inlet.plenum_height=0.04"}), "");
+  EXPECT_NE(fluidbed::testing::scene_error("[gas]\n", {"inlet.plenum_height=-0.01"})
+                .find("inlet.plenum_height"),
             std::string::npos);
 }
 

@@ -126,12 +126,7 @@ TEST(Probes, ReadFromTheSceneAndFromSetAndWrittenBack) {
 
 TEST(Probes, RefusedInOneLineNamingTheProbe) {
   const auto error_of = [](const std::string& scene, const std::string& set) {
-    try {
-      parse_scene(scene, "t.toml", {set});
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+    return fluidbed::testing::scene_error(scene, {set});
   };
   // The paper's box is 0.15 x 0.9 m.
   std::string e = error_of("[gas]\n", "diagnostics.probes=[[0.05, 0.1], [0.2, 0.05]]");

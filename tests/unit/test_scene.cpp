@@ -5,25 +5,13 @@
 #include <array>
 #include <filesystem>
 
+#include "../test_support.hpp"
 #include "core/errors.hpp"
 #include "run/packed_bed.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene_loader.hpp"
 
 using namespace fluidbed;
-
-namespace {
-
-std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    parse_scene(text, "test.toml", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
 
 TEST(Scene, DefaultsAreThePapers) {
   const Settings s = parse_scene("", "empty.toml");
@@ -53,49 +41,75 @@ TEST(Scene, ReadsValuesAndOverrides) {
 }
 
 TEST(Scene, RefusesUnknownKeysAndSections) {
-  EXPECT_NE(error_of("[particles]\ndiametre = 0.004\n").find("particles.diametre"), std::string::npos);
-  EXPECT_NE(error_of("[partcles]\ncount = 3\n").find("[partcles]"), std::string::npos);
-  EXPECT_NE(error_of("", {"contact.stifness=3"}).find("contact.stifness"), std::string::npos);
-  EXPECT_NE(error_of("", {"nonsense"}).find("section.key=value"), std::string::npos);
+  EXPECT_NE(
+      fluidbed::testing::scene_error("[particles]\ndiametre = 0.004\n").find("particles.diametre"),
+      std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("[partcles]\ncount = 3\n").find("[partcles]"),
+            std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("", {"contact.stifness=3"}).find("contact.stifness"),
+            std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("", {"nonsense"}).find("section.key=value"),
+            std::string::npos);
 }
 
 TEST(Scene, RefusesWrongTypes) {
-  EXPECT_NE(error_of("[particles]\ncount = \"many\"\n").find("particles.count"), std::string::npos);
-  EXPECT_NE(error_of("[particles]\ncount = 2.5\n").find("particles.count"), std::string::npos);
-  EXPECT_NE(error_of("[time]\ndt = true\n").find("time.dt"), std::string::npos);
-  EXPECT_NE(error_of("[time\n").find("test.toml:1"), std::string::npos);  // syntax: line named
+  EXPECT_NE(
+      fluidbed::testing::scene_error("[particles]\ncount = \"many\"\n").find("particles.count"),
+      std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("[particles]\ncount = 2.5\n").find("particles.count"),
+            std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("[time]\ndt = true\n").find("time.dt"),
+            std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("[time\n").find("t.toml:1"),
+            std::string::npos);  // syntax: line named
 }
 
 TEST(Scene, RefusesImpossibleValues) {
-  EXPECT_NE(error_of("[particles]\ndiameter = -0.004\n").find("particles.diameter"), std::string::npos);
-  EXPECT_NE(error_of("[particles]\ndensity = 0\n").find("particles.density"), std::string::npos);
-  EXPECT_NE(error_of("[time]\ndt = 0\n").find("time.dt"), std::string::npos);
-  EXPECT_NE(error_of("[contact]\nfriction = -1\n").find("contact.friction"), std::string::npos);
-  EXPECT_NE(error_of("[time]\nintegrator = \"rk4\"\n").find("time.integrator"), std::string::npos);
-  EXPECT_NE(error_of("[inlet]\nkind = \"nozzle\"\n").find("inlet.kind"), std::string::npos);
-  EXPECT_NE(error_of("[domain]\nthickness = 0.003\n").find("domain.thickness"), std::string::npos);
+  EXPECT_NE(
+      fluidbed::testing::scene_error("[particles]\ndiameter = -0.004\n").find("particles.diameter"),
+      std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("[particles]\ndensity = 0\n").find("particles.density"),
+            std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("[time]\ndt = 0\n").find("time.dt"), std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("[contact]\nfriction = -1\n").find("contact.friction"),
+            std::string::npos);
+  EXPECT_NE(
+      fluidbed::testing::scene_error("[time]\nintegrator = \"rk4\"\n").find("time.integrator"),
+      std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("[inlet]\nkind = \"nozzle\"\n").find("inlet.kind"),
+            std::string::npos);
+  EXPECT_NE(
+      fluidbed::testing::scene_error("[domain]\nthickness = 0.003\n").find("domain.thickness"),
+      std::string::npos);
   // 10,000 spheres of 4 mm cannot fit in 0.15 m x 0.9 m (8,325 lattice cells).
-  const std::string many = error_of("[particles]\ncount = 10000\n");
+  const std::string many = fluidbed::testing::scene_error("[particles]\ncount = 10000\n");
   EXPECT_NE(many.find("particles.count"), std::string::npos);
   EXPECT_NE(many.find("fit"), std::string::npos);
-  EXPECT_NE(error_of("[particles]\nplacement = \"single\"\ncount = 1\nx = 0.001\n").find("particles.x"),
-            std::string::npos);
+  EXPECT_NE(
+      fluidbed::testing::scene_error("[particles]\nplacement = \"single\"\ncount = 1\nx = 0.001\n")
+          .find("particles.x"),
+      std::string::npos);
 }
 
 // A size that would exhaust the machine is refused before anything is allocated, naming the key
 // that makes it large, and quickly; a domain only tall is not (it costs nothing until filled).
 TEST(Scene, RefusesSizesThatWouldExhaustTheMemory) {
-  EXPECT_NE(error_of("", {"particles.count=2000000000"}).find("particles.count"), std::string::npos);
-  const std::string gas = error_of("", {"gas.cells_x=100000", "gas.cells_y=100000",
-                                        "particles.diameter=1e-6", "particles.count=10"});
+  EXPECT_NE(
+      fluidbed::testing::scene_error("", {"particles.count=2000000000"}).find("particles.count"),
+      std::string::npos);
+  const std::string gas =
+      fluidbed::testing::scene_error("", {"gas.cells_x=100000", "gas.cells_y=100000",
+                                          "particles.diameter=1e-6", "particles.count=10"});
   EXPECT_NE(gas.find("gas.cells_x times gas.cells_y"), std::string::npos) << gas;
   EXPECT_NE(gas.find("GB of memory"), std::string::npos) << gas;
   // Rows and columns are counted in integers: 10^300 m is refused, 100 km is not.
-  EXPECT_NE(error_of("", {"domain.height=1e300"}).find("10^8 particles.diameter high"),
+  EXPECT_NE(fluidbed::testing::scene_error("", {"domain.height=1e300"})
+                .find("10^8 particles.diameter high"),
             std::string::npos);
-  EXPECT_NE(error_of("", {"domain.width=1e300"}).find("10^8 particles.diameter wide"),
+  EXPECT_NE(fluidbed::testing::scene_error("", {"domain.width=1e300"})
+                .find("10^8 particles.diameter wide"),
             std::string::npos);
-  EXPECT_EQ(error_of("", {"domain.height=100000"}), "");
+  EXPECT_EQ(fluidbed::testing::scene_error("", {"domain.height=100000"}), "");
 }
 
 // The lattice's shape gives the same sites, in the same order, as listing them one by one.
@@ -158,11 +172,14 @@ TEST(Scene, KeysThatFollowAnotherAreLeftOutUntilSet) {
   const std::string text = to_toml(set);
   EXPECT_NE(text.find("wall_friction = 0.1"), std::string::npos) << text;
   EXPECT_EQ(to_toml(parse_scene(text, "resolved.toml")), text);
-  EXPECT_NE(error_of("", {"contact.wall_friction=-0.1"}).find("contact.wall_friction"),
+  EXPECT_NE(fluidbed::testing::scene_error("", {"contact.wall_friction=-0.1"})
+                .find("contact.wall_friction"),
             std::string::npos);
-  EXPECT_NE(error_of("", {"contact.wall_friction=true"}).find("a number"), std::string::npos);
-  EXPECT_NE(error_of("[particles]\nplacement = 'packed'\npacking_scene = 'other.toml'\n",
-                     {"particles.packing_rolling_friction=0.2"})
+  EXPECT_NE(fluidbed::testing::scene_error("", {"contact.wall_friction=true"}).find("a number"),
+            std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error(
+                "[particles]\nplacement = 'packed'\npacking_scene = 'other.toml'\n",
+                {"particles.packing_rolling_friction=0.2"})
                 .find("particles.packing_rolling_friction"),
             std::string::npos);
 }
@@ -174,13 +191,17 @@ TEST(Scene, SmoothedVoidFractionNeedsItsLengthAndOnlyIt) {
       "", "test.toml", {"coupling.void_fraction=\"smoothed\"", "coupling.void_fraction_length=0.0015"});
   EXPECT_EQ(smoothed.coupling.void_fraction, VoidFraction::Smoothed);
   EXPECT_DOUBLE_EQ(smoothed.coupling.void_fraction_length, 0.0015);
-  EXPECT_NE(error_of("", {"coupling.void_fraction=\"smoothed\""}).find("coupling.void_fraction_length"),
+  EXPECT_NE(fluidbed::testing::scene_error("", {"coupling.void_fraction=\"smoothed\""})
+                .find("coupling.void_fraction_length"),
             std::string::npos);
-  EXPECT_NE(error_of("", {"coupling.void_fraction_length=0.002"}).find("\"exact\""),
+  EXPECT_NE(
+      fluidbed::testing::scene_error("", {"coupling.void_fraction_length=0.002"}).find("\"exact\""),
+      std::string::npos);
+  EXPECT_NE(fluidbed::testing::scene_error("", {"coupling.void_fraction=\"blurred\""})
+                .find("exact, smoothed"),
             std::string::npos);
-  EXPECT_NE(error_of("", {"coupling.void_fraction=\"blurred\""}).find("exact, smoothed"),
-            std::string::npos);
-  EXPECT_NE(error_of("", {"coupling.void_fraction=\"smoothed\"", "coupling.void_fraction_length=-1"})
+  EXPECT_NE(fluidbed::testing::scene_error(
+                "", {"coupling.void_fraction=\"smoothed\"", "coupling.void_fraction_length=-1"})
                 .find("coupling.void_fraction_length"),
             std::string::npos);
 }
