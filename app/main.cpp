@@ -176,6 +176,9 @@ int main(int argc, char** argv) {
   view->add_option("--lesson", view_args.lesson,
                    "run a lesson of assets/lessons (a script with captions); headless: DIR/video.mp4");
   view->add_flag("--list-lessons", view_args.list_lessons, "list the lessons and exit");
+  view->add_flag("--present", view_args.present,
+                 "open in the presenter mode: large text, the bed beside a large live Fig. 6, "
+                 "words in the bed (the p key switches it; docs/teaching.md)");
   view->add_option("--max-fps", view_args.max_fps,
                    "the window draws at most this many frames per second (30; 0: no cap)")
       ->check(CLI::NonNegativeNumber);

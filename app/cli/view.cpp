@@ -167,6 +167,10 @@ int view_command(const ViewArgs& a) {
         "fluidbed view: no display (DISPLAY and WAYLAND_DISPLAY are unset): writing headless "
         "frames to %s/frames instead\n",
         out.c_str());
+    if (a.present)
+      std::printf(
+          "fluidbed view: --present is the window's; headless frames of a bed with gas "
+          "already show it beside the live Fig. 6\n");
     std::fflush(stdout);
     return view_headless(s, script, hv);
   }
@@ -187,6 +191,7 @@ int view_command(const ViewArgs& a) {
   vo.scene_velocity = s.gas.enabled ? s.inlet.superficial_velocity : 0.0;
   vo.dt = s.time.dt;
   vo.lesson = !a.lesson.empty();
+  vo.present = a.present;
   std::unique_ptr<Viewer> viewer;
   try {
     viewer = std::make_unique<Viewer>(engine, vo);

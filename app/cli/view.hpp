@@ -17,6 +17,7 @@ struct ViewArgs {
   std::string script;  // a view script (view/script.hpp); empty: interactive
   std::string lesson;  // a lesson of assets/lessons (its NAME.txt), run as a script
   bool list_lessons = false;
+  bool present = false;  // the window opens in the presenter mode (headless frames: no change)
   std::string out;                    // screenshots, recordings, headless frames; empty: out/view
   OutputArgs output;                  // the look (colour, arrows, ...); frame_size: the window
   double max_fps = 30.0;              // the window's drawing rate at most (0: no cap)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <string>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "core/steps.hpp"
@@ -43,23 +45,38 @@ void CommandQueue::wake() {
 // ---------------------------------------------------------------------------------------------
 // ViewEngine
 
-std::string failure_in_the_viewer(const std::string& what, double u, double safe) {
-  std::string w = what;
+namespace {
+
+// A failure's meaning for the bed and what to do in the viewer.
+std::pair<std::string, std::string> failure_words(const std::string& what, double u, double safe) {
   const char* meaning = "the bed could not be computed any further at this gas velocity";
-  if (w.find("CFL") != std::string::npos)
+  if (what.find("CFL") != std::string::npos)
     meaning = "the gas moved further in one time step than the scene's step allows";
-  else if (w.find("overlap") != std::string::npos || w.find("porosity") != std::string::npos)
+  else if (what.find("overlap") != std::string::npos || what.find("porosity") != std::string::npos)
     meaning = "the gas pressed the particles into each other harder than the contacts can take";
-  else if (w.find("left the bed") != std::string::npos)
+  else if (what.find("left the bed") != std::string::npos)
     meaning = "the gas blew particles out of the bed";
-  const std::string speed = format_number("%.2f m/s", u);
   const std::string what_to_do =
       safe >= 0.0 && safe < u
           ? "Press Reset to start again from the packed bed at U = " +
                 format_number("%.2f m/s", safe) + ", the last velocity it ran at"
           : "Lower the gas, then press Reset to start again from the packed bed at that velocity";
-  return std::string("The simulation stopped at U = ") + speed + ": " + meaning + " (" + w +
+  return {meaning, what_to_do};
+}
+
+}  // namespace
+
+std::string failure_in_the_viewer(const std::string& what, double u, double safe) {
+  const auto [meaning, what_to_do] = failure_words(what, u, safe);
+  const std::string speed = format_number("%.2f m/s", u);
+  return std::string("The simulation stopped at U = ") + speed + ": " + meaning + " (" + what +
          "). " + what_to_do + "; keep the gas below " + speed + ".";
+}
+
+std::string failure_for_a_class(const std::string& what, double u, double safe) {
+  const auto [meaning, what_to_do] = failure_words(what, u, safe);
+  return std::string("The simulation stopped at U = ") + format_number("%.2f m/s", u) + ": " +
+         meaning + ". " + what_to_do + ".";
 }
 
 ViewEngine::ViewEngine(const Settings& scene, Options options)
@@ -139,6 +156,7 @@ void ViewEngine::apply(const ViewCommand& c) {
       steps_left_ = 0;
       until_step_ = -1;
       error_.clear();
+      error_plain_.clear();
       {
         std::lock_guard lock(status_mutex_);
         samples_.clear();
@@ -178,6 +196,7 @@ void ViewEngine::publish() {
     status_.generation = generation_;
     status_.commands_applied = applied_;
     status_.error = error_;
+    status_.error_plain = error_plain_;
     status_.refusal = refusal_;
     status_.curve = session_.curve();  // a few dozen points at most
     status_.held_at_top = session_.held_at_top();
@@ -232,7 +251,7 @@ void ViewEngine::loop() {
       } catch (const InputError& e) {  // a refused value: said, and the bed goes on as it was
         refusal_ = e.what();
       } catch (const std::exception& e) {  // a rebuild that failed
-        error_ = e.what();
+        error_ = error_plain_ = e.what();
         steps_left_ = 0;
         until_step_ = -1;
       }
@@ -262,6 +281,8 @@ void ViewEngine::loop() {
       session_.failed();
       error_ = failure_in_the_viewer(e.what(), session_.held_velocity(),
                                      session_.safe_velocity());
+      error_plain_ =
+          failure_for_a_class(e.what(), session_.held_velocity(), session_.safe_velocity());
       steps_left_ = 0;
       until_step_ = -1;
       continue;  // stopped() publishes the failed state and the message

@@ -59,6 +59,7 @@ struct EngineStatus {
   // A SimulationFailure (with what to do in the viewer) or a refused command: stepping stops
   // until Reset, which leaves the run/pause switch as it is (a failure does not touch it).
   std::string error;
+  std::string error_plain;  // the same for a class (the presenter mode): no engine's words
   std::string refusal;  // the last command refused (a stiffness the step cannot take), one line
   int held_at_top = 0;  // spheres the gas holds against the top screen (ViewSession::held_at_top)
   CurveState curve;     // the live Fig. 6
@@ -72,6 +73,10 @@ struct EngineStatus {
 // Reset then returns to.
 std::string failure_in_the_viewer(const std::string& what, double superficial_velocity,
                                   double safe_velocity);
+// The same without the engine's own words in brackets (a CFL number, a time step): what the
+// presenter mode shows a class.
+std::string failure_for_a_class(const std::string& what, double superficial_velocity,
+                                double safe_velocity);
 
 class ViewEngine {
  public:
@@ -119,7 +124,7 @@ class ViewEngine {
   std::int64_t steps_left_ = 0;
   std::int64_t until_step_ = -1;
   std::uint64_t applied_ = 0, generation_ = 0;
-  std::string error_, refusal_;
+  std::string error_, error_plain_, refusal_;
   std::chrono::steady_clock::time_point last_publish_{}, speed_t0_{};
   std::int64_t speed_steps0_ = 0;
   // Stepping spans shorter than the speed's quarter second (a script's `at T` lines) are summed

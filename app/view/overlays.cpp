@@ -65,6 +65,7 @@ void Viewer::draw_overlays() {
     }
     dl->PopClipRect();
   }
+  draw_bed_labels();
 }
 
 void Viewer::draw_hover_tooltip(const std::optional<std::size_t>& particle, const Bubble* bubble) {

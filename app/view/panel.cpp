@@ -198,6 +198,35 @@ void Viewer::draw_gas_section() {
   const EngineStatus& st = status_;
   if (!ImGui::CollapsingHeader("Gas and the stages of Fig. 6", ImGuiTreeNodeFlags_DefaultOpen))
     return;
+  velocity_slider("U = %.2f m/s");
+  ImGui::TextDisabled("Ctrl+click the slider to type a velocity, Enter to apply it");
+  ImGui::Text("jet %.1f m/s (fastest inlet face %.1f m/s)", st.jet_velocity, st.inlet_jet_velocity);
+  if (opt_.umf > 0.0) {
+    ImGui::TextWrapped("U_mf = %.2f m/s (U = %.2f U_mf), measured on this scene: %s%s.", opt_.umf,
+                       st.superficial_velocity / opt_.umf, UmfEstimate::kMethod,
+                       opt_.umf_cached ? " (from the cache)" : "");
+    const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
+    for (std::size_t k = 0; k < std::size(kPresets); ++k) {
+      const Preset& p = kPresets[k];
+      const double u = p.umf_multiple * opt_.umf;
+      char label[96];
+      std::snprintf(label, sizeof label, "%s %.2f", p.label, u);
+      if (k % 2 == 1) ImGui::SameLine();
+      if (ImGui::Button(label, ImVec2(half, 0))) set_velocity(u);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%.2f U_mf = %.2f m/s: %s", p.umf_multiple, u, p.what);
+      note_widget((std::string("preset_") + p.name).c_str(), fmt("%.6g", u));
+    }
+    fig6_button(ImVec2(-1.0f, 0.0f));
+  }
+  if (ImGui::Button(st.ideal ? "Back to the scene's contacts" : "Ideal case (eta = 0, gamma = 0)"))
+    post({ViewCommand::Kind::ideal, st.ideal ? 0.0 : 1.0});
+  ImGui::Text("contacts: %.0f N/m%s", st.stiffness, st.ideal ? ", damping 0, friction 0" : "");
+}
+
+// The gas velocity's slider, full width, with U_mf and the scene's velocity ticked under it.
+void Viewer::velocity_slider(const char* format) {
+  const EngineStatus& st = status_;
   // Dragged, the velocity applies as the pointer moves; typed (Ctrl+click), it is clamped to the
   // range and applies when the field closes (Enter, or a click elsewhere), never digit by digit.
   if (typed_velocity_ && !ImGui::IsAnyItemActive()) {
@@ -209,7 +238,7 @@ void Viewer::draw_gas_section() {
   ImGui::SetNextItemWidth(-1.0f);
   // A fixed range (set when the window opened): the value under a held pointer stays where it is.
   const bool typing = ImGui::GetIO().WantTextInput;
-  if (ImGui::SliderFloat("##U", &velocity_, 0.0f, velocity_top_, "U = %.2f m/s",
+  if (ImGui::SliderFloat("##U", &velocity_, 0.0f, velocity_top_, format,
                          ImGuiSliderFlags_AlwaysClamp)) {
     if (typing)
       typed_velocity_ = true;
@@ -251,45 +280,27 @@ void Viewer::draw_gas_section() {
     }
     ImGui::Dummy(ImVec2(b.x - a.x, 1.2f * h));
   }
-  ImGui::TextDisabled("Ctrl+click the slider to type a velocity, Enter to apply it");
-  ImGui::Text("jet %.1f m/s (fastest inlet face %.1f m/s)", st.jet_velocity, st.inlet_jet_velocity);
-  if (opt_.umf > 0.0) {
-    ImGui::TextWrapped("U_mf = %.2f m/s (U = %.2f U_mf), measured on this scene: %s%s.", opt_.umf,
-                       st.superficial_velocity / opt_.umf, UmfEstimate::kMethod,
-                       opt_.umf_cached ? " (from the cache)" : "");
-    const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
-    for (std::size_t k = 0; k < std::size(kPresets); ++k) {
-      const Preset& p = kPresets[k];
-      const double u = p.umf_multiple * opt_.umf;
-      char label[96];
-      std::snprintf(label, sizeof label, "%s %.2f", p.label, u);
-      if (k % 2 == 1) ImGui::SameLine();
-      if (ImGui::Button(label, ImVec2(half, 0))) set_velocity(u);
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("%.2f U_mf = %.2f m/s: %s", p.umf_multiple, u, p.what);
-      note_widget((std::string("preset_") + p.name).c_str(), fmt("%.6g", u));
-    }
-    // Fig. 6 from the start in one action: the packed bed at the fixed-bed preset, running, the
-    // curve empty (not while a script runs the bed).
-    if (const Preset* fixed = find_preset("fixed")) {
-      const bool scripted = script_runs_the_bed() || held_;
-      const double u = fixed->umf_multiple * opt_.umf;
-      if (ImGui::Button("Fig. 6 from the packed bed", ImVec2(-1.0f, 0.0f)) && !scripted) {
-        set_velocity(u);  // Reset keeps it: the packed bed at this velocity
-        post({ViewCommand::Kind::reset, 0.0});
-        if (!opt_.script.empty()) script_wants_running_ = true;
-        post({ViewCommand::Kind::run, 0.0});
-      }
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Back to the packed bed at %.2f m/s (%.1f U_mf) and run: then raise U a "
-                          "step at a time through U_mf, and lower it again",
-                          u, fixed->umf_multiple);
-      note_widget("fig6_button", fmt("%.6g", u));
-    }
+}
+
+// Fig. 6 from the start in one action: the packed bed at the fixed-bed preset, running, the
+// curve empty (not while a script runs the bed).
+void Viewer::fig6_button(const ImVec2& size) {
+  const Preset* fixed = find_preset("fixed");
+  if (!fixed || !(opt_.umf > 0.0)) return;
+  const bool scripted = script_runs_the_bed() || held_;
+  const double u = fixed->umf_multiple * opt_.umf;
+  if (ImGui::Button("Fig. 6 from the packed bed", size) && !scripted) {
+    set_velocity(u);  // Reset keeps it: the packed bed at this velocity
+    post({ViewCommand::Kind::reset, 0.0});
+    if (!opt_.script.empty()) script_wants_running_ = true;
+    post({ViewCommand::Kind::run, 0.0});
   }
-  if (ImGui::Button(st.ideal ? "Back to the scene's contacts" : "Ideal case (eta = 0, gamma = 0)"))
-    post({ViewCommand::Kind::ideal, st.ideal ? 0.0 : 1.0});
-  ImGui::Text("contacts: %.0f N/m%s", st.stiffness, st.ideal ? ", damping 0, friction 0" : "");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Back to the packed bed at %.2f m/s (%.1f U_mf) and run: then raise U a "
+        "step at a time through U_mf, and lower it again",
+        u, fixed->umf_multiple);
+  note_widget("fig6_button", fmt("%.6g", u));
 }
 
 void Viewer::draw_curve_section() {
@@ -395,17 +406,25 @@ void Viewer::draw_look_section() {
   if (ImGui::SmallButton("1x")) look_.zoom = {};
 }
 
+ImFont* Viewer::font_of(float px) const {
+  ImFont* font = fonts_.front().second;
+  for (const auto& [size, f] : fonts_)
+    if (size <= px) font = f;
+  return font;
+}
+
 void Viewer::draw_panel() {
+  if (present_) {
+    draw_presenter();
+    return;
+  }
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(panel_.width, io.DisplaySize.y), ImGuiCond_Always);
   ImGui::Begin("fluidbed", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar);
-  ImFont* font = fonts_.front().second;
-  for (const auto& [size, f] : fonts_)
-    if (size <= panel_.font) font = f;
-  ImGui::PushFont(font);
+  ImGui::PushFont(font_of(panel_.font));
   draw_top_block();
   // The messages' area: five lines of the panel's font at its foot.
   const float message_height =
@@ -430,7 +449,8 @@ void Viewer::draw_panel() {
   }
   ImGui::Separator();
   ImGui::TextDisabled(
-      "space run/pause, s step, r reset, c colour\nwheel: zoom the bed under the pointer,\n"
+      "space run/pause, s step, r reset, c colour, p presenter\nwheel: zoom the bed under the "
+      "pointer,\n"
       "drag: pan, right double-click: 1x");
   ImGui::EndChild();
   ImGui::BeginChild("messages", ImVec2(0.0f, 0.0f), true);

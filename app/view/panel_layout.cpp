@@ -9,8 +9,18 @@ PanelLayout panel_layout(int window_width, int window_height) {
   PanelLayout p;
   const float wanted = static_cast<float>(window_height) / 36.0f;
   for (float f : kPanelFontSizes)
-    if (f <= wanted) p.font = f;
+    if (f <= wanted && f <= kPanelFontMax) p.font = f;
   p.width = std::round(std::min(25.0f * p.font, 0.45f * static_cast<float>(window_width)));
+  return p;
+}
+
+PresenterLayout presenter_layout(int window_width, int window_height) {
+  PresenterLayout p;
+  const float wanted = static_cast<float>(window_height) / 28.0f;
+  p.font = kPanelFontSizes[0];
+  for (float f : kPanelFontSizes)
+    if (f <= wanted) p.font = f;
+  p.bed_right = std::round(0.30f * static_cast<float>(window_width));
   return p;
 }
 

@@ -139,16 +139,18 @@ void Viewer::draw_plots() {
   series(dl, o, plot_t_, percent, IM_COL32(255, 170, 110, 255));
 }
 
-void Viewer::draw_curve_plot(float height) {
+void Viewer::draw_curve_plot(float height, bool for_a_class) {
   const CurveState& c = status_.curve;
   ImDrawList* dl = ImGui::GetWindowDrawList();
   // Velocities from 0 to the slider's top; dp from 0 to a little above the weight or the data.
   double dp_top = 1.3 * c.weight_per_area;
   for (const CurveBranch& b : c.branches)
     for (const CurvePoint& p : b.points) dp_top = std::max(dp_top, 1.1 * (p.dp_mean + p.dp_std));
-  const Axes a =
-      axes(height, 0.0, velocity_top_, 0.0, std::max(dp_top, 1.0), "U (m/s)", "mean dp (Pa)");
-  hline(dl, a, c.weight_per_area, IM_COL32(200, 200, 120, 255), "W/A");
+  const Axes a = axes(height, 0.0, velocity_top_, 0.0, std::max(dp_top, 1.0),
+                      for_a_class ? "gas velocity U (m/s)" : "U (m/s)",
+                      for_a_class ? "pressure drop (Pa)" : "mean dp (Pa)");
+  hline(dl, a, c.weight_per_area, IM_COL32(200, 200, 120, 255),
+        for_a_class ? "the bed's weight per area" : "W/A");
   const ImU32 up = IM_COL32(110, 190, 255, 255), down = IM_COL32(255, 150, 90, 255);
   dl->PushClipRect(a.p0, a.p1, true);
   if (c.umf.ok) {  // the fit: the defluidization line up to U_mf, the plateau beyond
@@ -183,16 +185,20 @@ void Viewer::draw_curve_plot(float height) {
                 text);
   }
   // The legend.
-  ImGui::TextColored(ImVec4(0.43f, 0.75f, 1.0f, 1.0f), "o increasing U");
+  ImGui::TextColored(ImVec4(0.43f, 0.75f, 1.0f, 1.0f),
+                     for_a_class ? "o gas raised" : "o increasing U");
   ImGui::SameLine();
-  ImGui::TextColored(ImVec4(1.0f, 0.59f, 0.35f, 1.0f), "[] decreasing U");
+  ImGui::TextColored(ImVec4(1.0f, 0.59f, 0.35f, 1.0f),
+                     for_a_class ? "[] gas lowered" : "[] decreasing U");
   ImGui::SameLine();
-  ImGui::TextColored(ImVec4(0.78f, 0.78f, 0.47f, 1.0f), "-- W/A %.0f Pa", c.weight_per_area);
+  ImGui::TextColored(ImVec4(0.78f, 0.78f, 0.47f, 1.0f),
+                     for_a_class ? "-- weight %.0f Pa" : "-- W/A %.0f Pa", c.weight_per_area);
   int points = 0;
   for (const CurveBranch& b : c.branches)
     for (const CurvePoint& p : b.points) points += p.shared ? 0 : 1;
-  note_widget("curve", std::to_string(points) + " points, " + std::to_string(c.branches.size()) +
-                           " branches");
+  note_widget(
+      for_a_class ? "present_curve" : "curve",
+      std::to_string(points) + " points, " + std::to_string(c.branches.size()) + " branches");
 }
 
 }  // namespace fluidbed::app

@@ -28,4 +28,16 @@ std::string speed_words(double r) {
   return std::string(words) + figure;
 }
 
+std::string speed_for_a_class(double r) {
+  if (!(r > 0.0)) return "";
+  char buf[96];
+  if (r < 0.95)
+    std::snprintf(buf, sizeof buf, "slow motion: 1 s of the bed takes %.1f s here", 1.0 / r);
+  else if (r <= 1.05)
+    std::snprintf(buf, sizeof buf, "real time");
+  else
+    std::snprintf(buf, sizeof buf, "fast motion: 1 s of the bed takes %.2f s here", 1.0 / r);
+  return buf;
+}
+
 }  // namespace fluidbed::app

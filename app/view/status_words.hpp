@@ -14,5 +14,8 @@ std::string run_state_words(const EngineStatus& st, bool script_runs_it);
 // "slow motion x 15.0 (0.0667 sim s per wall s)", "real time (1.02 sim s per wall s)",
 // "fast motion x 2.0 (2 sim s per wall s)", "speed: not measured yet". One line of the panel.
 std::string speed_words(double sim_s_per_wall_s);
+// The same for the presenter mode, without the figure: "slow motion: 1 s of the bed takes 2.3 s
+// here", "real time"; empty before it is measured.
+std::string speed_for_a_class(double sim_s_per_wall_s);
 
 }  // namespace fluidbed::app

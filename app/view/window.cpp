@@ -82,6 +82,7 @@ Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
   settle_edit_ = static_cast<float>(eo.settle);
   average_edit_ = static_cast<float>(eo.average);
   if (const char* w = std::getenv("FLUIDBED_VIEW_WIDGETS"); w && *w) widgets_file_ = w;
+  present_ = opt_.present;
 }
 
 void Viewer::key_event(int key, int action) {
@@ -178,8 +179,8 @@ void Viewer::frame() {
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
   step_script();
+  handle_keys();  // first: `p` changes the frame's place
   place_frame();
-  handle_keys();
   handle_scene_input();
   widget_lines_.clear();
   draw_panel();
@@ -207,14 +208,20 @@ void Viewer::frame() {
 void Viewer::place_frame() {
   const ImGuiIO& io = ImGui::GetIO();
   panel_ = panel_layout(static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y));
-  area_ = {panel_.width, 0.0f, std::max(panel_.width + 16.0f, io.DisplaySize.x),
-           std::max(16.0f, io.DisplaySize.y)};
+  presenter_ =
+      presenter_layout(static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y));
+  // The presenter mode: the bed on the left, the words and Fig. 6 on the right (presenter.cpp).
+  area_ = present_
+              ? render::Rect{0.0f, 0.0f, std::max(16.0f, presenter_.bed_right),
+                             std::max(16.0f, io.DisplaySize.y)}
+              : render::Rect{panel_.width, 0.0f, std::max(panel_.width + 16.0f, io.DisplaySize.x),
+                             std::max(16.0f, io.DisplaySize.y)};
   fb_scale_ = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
   frame_w_ = std::max(16, static_cast<int>(std::lround(area_.width() * fb_scale_)));
   frame_h_ = std::max(16, static_cast<int>(std::lround(area_.height() * fb_scale_)));
   if (!snap_) return;
   render::RenderSettings look = look_;
-  look.close_up = opt_.look.close_up;
+  look.close_up = present_ ? 0.0 : opt_.look.close_up;  // the presenter's bed: whole and large
   if (look.close_up > 0.0 &&
       !render::keeps_close_up(*snap_, frame_w_, frame_h_, look.close_up, look.caption_band))
     look.close_up = 0.0;
@@ -277,6 +284,10 @@ void Viewer::handle_keys() {
         break;
       case GLFW_KEY_C:
         cycle_colour();
+        break;
+      case GLFW_KEY_P:  // the presenter mode on or off; the bed's panels change
+        present_ = !present_;
+        look_.zoom = {};
         break;
       default:
         break;

@@ -27,6 +27,7 @@
 #include "view/script_runner.hpp"
 
 struct ImFont;
+struct ImVec2;
 
 namespace fluidbed::app {
 
@@ -49,6 +50,8 @@ struct ViewerOptions {
   // The script is a lesson: its `quit` ends the lesson but leaves the window open on its last
   // picture and curve until the teacher closes it (a --script quits).
   bool lesson = false;
+  // Open in the presenter mode (`view --present`; the `p` key switches it): view/presenter.cpp.
+  bool present = false;
 };
 
 // What the window measured, printed at the end (the viewer's benchmark).
@@ -98,7 +101,14 @@ class Viewer : private ScriptTarget {
   void draw_bed_section();
   void draw_look_section();
   void draw_plots();
-  void draw_curve_plot(float height);
+  void draw_curve_plot(float height, bool for_a_class = false);
+  void velocity_slider(const char* format);
+  void fig6_button(const ImVec2& size);
+  ImFont* font_of(float size) const;  // the largest loaded font not above `size` px
+  // presenter.cpp: the presenter mode's right-hand side and its words in the bed.
+  void draw_presenter();
+  void draw_presenter_messages();
+  void draw_bed_labels();
   void draw_particle_info(std::size_t id, bool tooltip);
   void note_widget(const char* name, const std::string& value = "");
   // saved_files.cpp
@@ -163,6 +173,8 @@ class Viewer : private ScriptTarget {
   EngineStatus status_;
   render::RenderSettings look_;
   PanelLayout panel_;
+  bool present_ = false;  // the presenter mode (view/presenter.cpp)
+  PresenterLayout presenter_;
   render::Rect area_;              // the bed area in window pixels
   float fb_scale_ = 1.0f;          // framebuffer pixels per window pixel
   int frame_w_ = 0, frame_h_ = 0;  // the drawn frame (framebuffer px)

@@ -601,3 +601,46 @@ TEST(ViewCommand, ShippedLessonsAreAcceptedByTheirScenes) {
 
 }  // namespace
 }  // namespace fluidbed::testing
+
+namespace fluidbed::testing {
+namespace {
+
+// The teacher's request: a presenter mode. `--present` opens it: the bed on the left, on the
+// right the controls, the words and the live Fig. 6 in larger text, words in the bed; `p`
+// switches to the full panel and back.
+TEST(ViewWindow, PresenterModeOpensLargeAndThePKeySwitchesIt) {
+  REQUIRE_XDOTOOL();
+  const auto dir = fresh_dir("present");
+  const std::string scene = written_file(dir / "small.toml", kViewTestScene);
+  BackgroundView v(dir, scene + " --present --frame-size 1280x720 --out " + (dir / "out").string());
+  const auto gas = v.wait_for_widget("present_gas");
+  ASSERT_FALSE(gas.empty()) << v.log();
+  const auto present = v.widgets();
+  ASSERT_TRUE(present.count("bed0"));
+  ASSERT_TRUE(present.count("present_curve"));
+  ASSERT_TRUE(present.count("bed_labels"));  // the words in the bed are drawn (maybe none yet)
+  EXPECT_FALSE(present.count("time"));       // the full panel's top block is not
+  EXPECT_LE(number(present.at("bed0"), 2), number(gas, 0) + 1.0);  // the bed left of the words
+  EXPECT_GE(number(present.at("present_curve"), 0), number(present.at("bed0"), 2));
+  const auto& run = present.at("present_run_button");
+  const double tall = number(run, 3) - number(run, 1);
+  settle_window();
+  ASSERT_TRUE(xdotool("mousemove 100 300"));  // over the bed: the keys go to the window
+  ASSERT_TRUE(xdotool("key p"));
+  const auto panel = v.wait_for_widget("time", 30);
+  ASSERT_FALSE(panel.empty()) << v.log();
+  const auto full = v.widgets();
+  EXPECT_FALSE(full.count("present_gas"));
+  EXPECT_FALSE(full.count("bed_labels"));
+  // Text of 24 px against the panel's 18 at 720 px high: buttons (text and 2 x 3 px of frame)
+  // a quarter taller.
+  const auto& run_panel = full.at("run_button");
+  EXPECT_GE(tall, 1.2 * (number(run_panel, 3) - number(run_panel, 1)));
+  EXPECT_GT(number(full.at("bed0"), 0), number(full.at("run_button"), 2));  // bed right of panel
+  ASSERT_TRUE(xdotool("key p"));
+  EXPECT_FALSE(v.wait_for_widget("present_gas", 30).empty()) << v.log();
+  EXPECT_TRUE(v.running());
+}
+
+}  // namespace
+}  // namespace fluidbed::testing

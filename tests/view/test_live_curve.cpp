@@ -446,3 +446,32 @@ TEST(BubbleView, OnlyALastingRisingBubbleShowsARiseVelocity) {
 
 }  // namespace
 }  // namespace fluidbed
+
+namespace fluidbed {
+namespace {
+
+// The presenter mode: text from the back of a room, the bed on the left, the class's words.
+TEST(Presenter, LayoutTextAndWordsForAClass) {
+  const app::PresenterLayout hd = app::presenter_layout(1920, 1080);
+  EXPECT_EQ(hd.font, 36.0f);  // the panel's is 24 at this size
+  EXPECT_EQ(hd.bed_right, 576.0f);
+  const app::PresenterLayout small = app::presenter_layout(1280, 720);
+  EXPECT_EQ(small.font, 24.0f);
+  EXPECT_EQ(small.bed_right, 384.0f);
+  EXPECT_GT(small.font, app::panel_layout(1280, 720).font);
+  // A failure without the engine's words; what to do is kept.
+  const std::string what = "the gas CFL number 1.046 passed 1 at t = 0.0001 s; reduce time.dt";
+  const std::string plain = app::failure_for_a_class(what, 5.2, 2.8);
+  EXPECT_EQ(plain.find("CFL"), std::string::npos) << plain;
+  EXPECT_EQ(plain.find("time.dt"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("Press Reset to start again from the packed bed at U = 2.80 m/s"),
+            std::string::npos)
+      << plain;
+  EXPECT_NE(app::failure_in_the_viewer(what, 5.2, 2.8).find("CFL"), std::string::npos);
+  EXPECT_EQ(app::speed_for_a_class(1.0 / 2.3), "slow motion: 1 s of the bed takes 2.3 s here");
+  EXPECT_EQ(app::speed_for_a_class(1.0), "real time");
+  EXPECT_EQ(app::speed_for_a_class(0.0), "");
+}
+
+}  // namespace
+}  // namespace fluidbed
