@@ -7,7 +7,10 @@ namespace fluidbed::app {
 
 PanelLayout panel_layout(int window_width, int window_height) {
   PanelLayout p;
-  const float wanted = static_cast<float>(window_height) / 36.0f;
+  // By the height, as a 16:9 window of this width would have it at most: a squarer window (1400 x
+  // 900) gave the panel a height's text and width, and the beds, limited by the width, shrank.
+  const float wanted =
+      std::min(static_cast<float>(window_height) / 36.0f, static_cast<float>(window_width) / 64.0f);
   for (float f : kPanelFontSizes)
     if (f <= wanted && f <= kPanelFontMax) p.font = f;
   p.width = std::round(std::min(25.0f * p.font, 0.45f * static_cast<float>(window_width)));

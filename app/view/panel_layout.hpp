@@ -18,7 +18,8 @@ struct PanelLayout {
 };
 
 // The font: the largest size not above height / 36 (15 px at 600 px high, 18 at 720, 21 at
-// 800, 24 from 900); the panel 25 font sizes wide, at most 45 % of the window.
+// 800, 24 from 900) nor width / 64 (a 16:9 window's; 21 px at 1400 x 900); the panel 25 font
+// sizes wide, at most 45 % of the window.
 PanelLayout panel_layout(int window_width, int window_height);
 
 // The presenter mode (`view --present`, the `p` key): the bed on the left at the window's full

@@ -185,6 +185,8 @@ TEST(PanelLayout, TextAndPanelGrowWithTheWindow) {
   EXPECT_EQ(hd.font, 18.0f);
   EXPECT_EQ(hd.width, 450.0f);
   EXPECT_EQ(app::panel_layout(1920, 1080).font, 24.0f);
+  // A squarer window: the text of a 16:9 window as wide, so that the beds keep their width.
+  EXPECT_EQ(app::panel_layout(1400, 900).font, 21.0f);
   // A narrow window keeps at least 55 % for the bed.
   EXPECT_LE(app::panel_layout(640, 480).width, 0.45f * 640.0f);
 }
