@@ -176,6 +176,9 @@ int main(int argc, char** argv) {
   view->add_option("--lesson", view_args.lesson,
                    "run a lesson of assets/lessons (a script with captions); headless: DIR/video.mp4");
   view->add_flag("--list-lessons", view_args.list_lessons, "list the lessons and exit");
+  view->add_option("--beside", view_args.beside,
+                   "a second scene beside the first, its own engine; run, reset and the gas act "
+                   "on both (--set too)");
   view->add_flag("--present", view_args.present,
                  "open in the presenter mode: large text, the bed beside a large live Fig. 6, "
                  "words in the bed (the p key switches it; docs/teaching.md)");

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "core/steps.hpp"
@@ -129,6 +130,13 @@ int view_command(const ViewArgs& a) {
   Settings s = load_scene(scene, a.run_like.overrides);
   refuse_unsafe_scene(s);
   s.threads = a.run_like.threads;
+  std::optional<Settings> beside;
+  if (!a.beside.empty()) {
+    if (!std::filesystem::exists(a.beside)) throw InputError("cannot read the scene " + a.beside);
+    beside = load_scene(a.beside, a.run_like.overrides);
+    refuse_unsafe_scene(*beside);
+    beside->threads = a.run_like.threads;
+  }
   check_script_against(script, s, script_path);
   FrameOptions fo = frame_options(with_run_names(a.output), asset_dir(), s);
   // A lesson's video in slow motion (x 2 at 25 frames per second), time to read its captions.
@@ -171,6 +179,9 @@ int view_command(const ViewArgs& a) {
       std::printf(
           "fluidbed view: --present is the window's; headless frames of a bed with gas "
           "already show it beside the live Fig. 6\n");
+    if (beside)
+      std::printf("fluidbed view: --beside is the window's; the headless frames show %s only\n",
+                  scene.c_str());
     std::fflush(stdout);
     return view_headless(s, script, hv);
   }
@@ -192,6 +203,13 @@ int view_command(const ViewArgs& a) {
   vo.dt = s.time.dt;
   vo.lesson = !a.lesson.empty();
   vo.present = a.present;
+  vo.scene = s;
+  std::unique_ptr<ViewEngine> beside_engine;
+  if (beside) {
+    beside_engine = std::make_unique<ViewEngine>(*beside, eo);
+    vo.beside = beside_engine.get();
+    vo.beside_name = beside->scene.name;
+  }
   std::unique_ptr<Viewer> viewer;
   try {
     viewer = std::make_unique<Viewer>(engine, vo);
@@ -205,8 +223,10 @@ int view_command(const ViewArgs& a) {
     return view_headless(s, script, hv);
   }
   engine.start();
+  if (beside_engine) beside_engine->start();
   const int status = viewer->run();
   engine.stop();
+  if (beside_engine) beside_engine->stop();
   const ViewerStats st = viewer->stats();
   const EngineStatus es = engine.status();
   viewer.reset();
@@ -223,6 +243,11 @@ int view_command(const ViewArgs& a) {
   std::printf("viewer: stopped at t = %.6f s, step %lld, U = %.4f m/s\n", es.time,
               static_cast<long long>(es.steps), es.superficial_velocity);
   if (s.gas.enabled) std::printf("viewer: %s\n", describe_curve(es.curve).c_str());
+  if (beside_engine) {
+    const EngineStatus bs = beside_engine->status();
+    std::printf("beside: stopped at t = %.6f s, step %lld, U = %.4f m/s\n", bs.time,
+                static_cast<long long>(bs.steps), bs.superficial_velocity);
+  }
   return status;
 }
 

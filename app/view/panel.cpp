@@ -222,6 +222,7 @@ void Viewer::draw_gas_section() {
   if (ImGui::Button(st.ideal ? "Back to the scene's contacts" : "Ideal case (eta = 0, gamma = 0)"))
     post({ViewCommand::Kind::ideal, st.ideal ? 0.0 : 1.0});
   ImGui::Text("contacts: %.0f N/m%s", st.stiffness, st.ideal ? ", damping 0, friction 0" : "");
+  draw_beside_section();
 }
 
 // The gas velocity's slider, full width, with U_mf and the scene's velocity ticked under it.

@@ -128,6 +128,8 @@ void Viewer::draw_plots() {
   const Axes d = axes(h, plot_t_.front(), plot_t_.back(), lo, hi, "t (s)", "dp (Pa)");
   hline(dl, d, wa, IM_COL32(200, 200, 120, 255), "W/A");
   series(dl, d, plot_t_, plot_dp_, IM_COL32(120, 190, 255, 255));
+  if (beside_ && beside_t_.size() > 1)  // the bed beside, fainter, on the same axes
+    series(dl, d, beside_t_, beside_dp_, IM_COL32(230, 230, 235, 150));
   note_widget("dp_plot", std::to_string(lo) + " " + std::to_string(hi));
   // The largest overlap: from 0, its top set robustly too.
   std::vector<float> percent(plot_overlap_.size());
@@ -152,6 +154,19 @@ void Viewer::draw_curve_plot(float height, bool for_a_class) {
   hline(dl, a, c.weight_per_area, IM_COL32(200, 200, 120, 255),
         for_a_class ? "the bed's weight per area" : "W/A");
   const ImU32 up = IM_COL32(110, 190, 255, 255), down = IM_COL32(255, 150, 90, 255);
+  // The bed beside: its points in grey crosses under this bed's.
+  if (beside_) {
+    dl->PushClipRect(a.p0, a.p1, true);
+    const float r = 0.22f * ImGui::GetFontSize();
+    for (const CurveBranch& b : beside_status_.curve.branches)
+      for (const CurvePoint& p : b.points) {
+        const ImVec2 q = a.at(p.u, p.dp_mean);
+        const ImU32 grey = IM_COL32(225, 225, 230, 170);
+        dl->AddLine(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), grey, 1.5f);
+        dl->AddLine(ImVec2(q.x - r, q.y + r), ImVec2(q.x + r, q.y - r), grey, 1.5f);
+      }
+    dl->PopClipRect();
+  }
   dl->PushClipRect(a.p0, a.p1, true);
   if (c.umf.ok) {  // the fit: the defluidization line up to U_mf, the plateau beyond
     const ImU32 fit = IM_COL32(255, 220, 120, 200);
@@ -193,6 +208,7 @@ void Viewer::draw_curve_plot(float height, bool for_a_class) {
   ImGui::SameLine();
   ImGui::TextColored(ImVec4(0.78f, 0.78f, 0.47f, 1.0f),
                      for_a_class ? "-- weight %.0f Pa" : "-- W/A %.0f Pa", c.weight_per_area);
+  if (beside_) ImGui::TextColored(ImVec4(0.88f, 0.88f, 0.9f, 1.0f), "x the bed beside");
   int points = 0;
   for (const CurveBranch& b : c.branches)
     for (const CurvePoint& p : b.points) points += p.shared ? 0 : 1;

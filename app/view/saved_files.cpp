@@ -32,6 +32,12 @@ void Viewer::write_widgets() {
                   layout_.beds[k].zoomed ? "zoomed" : "whole");
     text += line;
   }
+  if (beside_) {
+    std::snprintf(line, sizeof line, "beside_bed %.1f %.1f %.1f %.1f %s\n", beside_area_.x0,
+                  beside_area_.y0, beside_area_.x1, beside_area_.y1,
+                  beside_snap_ ? "drawn" : "waiting");
+    text += line;
+  }
   for (const std::string& w : widget_lines_) text += w + "\n";
   if (text == widgets_written_) return;
   widgets_written_ = text;

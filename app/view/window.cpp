@@ -83,6 +83,8 @@ Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
   average_edit_ = static_cast<float>(eo.average);
   if (const char* w = std::getenv("FLUIDBED_VIEW_WIDGETS"); w && *w) widgets_file_ = w;
   present_ = opt_.present;
+  beside_ = opt_.beside;
+  beside_name_ = opt_.beside_name;
 }
 
 void Viewer::key_event(int key, int action) {
@@ -107,6 +109,8 @@ Viewer::~Viewer() {
 
 void Viewer::post(const ViewCommand& c) {
   engine_.post(c);
+  const bool both = c.kind != ViewCommand::Kind::ideal && c.kind != ViewCommand::Kind::stiffness;
+  if (beside_ && both) beside_->post(c);
 }
 
 int Viewer::run() {
@@ -147,6 +151,7 @@ void Viewer::take_newest() {
   keep_last(plot_dp_, kPlotPoints);
   keep_last(plot_overlap_, kPlotPoints);
   status_ = st;
+  take_beside();
   // The regime in words over the bed (from the last second's bubbles; gas beds only).
   look_.bed_label = st.bubbles && snap_ && snap_->has_gas() ? regime_words(*st.bubbles) : "";
   if (s && seq != snap_seq_) {
@@ -219,9 +224,19 @@ void Viewer::place_frame() {
   fb_scale_ = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
   frame_w_ = std::max(16, static_cast<int>(std::lround(area_.width() * fb_scale_)));
   frame_h_ = std::max(16, static_cast<int>(std::lround(area_.height() * fb_scale_)));
+  // A bed beside: the area's right half is its (each bed whole, no close-up).
+  beside_w_ = 0;
+  if (beside_) {
+    const float mid = std::round(0.5f * (area_.x0 + area_.x1));
+    beside_area_ = {mid, area_.y0, area_.x1, area_.y1};
+    area_.x1 = mid;
+    frame_w_ = std::max(16, static_cast<int>(std::lround(area_.width() * fb_scale_)));
+    beside_w_ = std::max(16, static_cast<int>(std::lround(beside_area_.width() * fb_scale_)));
+  }
   if (!snap_) return;
   render::RenderSettings look = look_;
-  look.close_up = present_ ? 0.0 : opt_.look.close_up;  // the presenter's bed: whole and large
+  // The presenter's bed, and two beds side by side: whole and large.
+  look.close_up = present_ || beside_ ? 0.0 : opt_.look.close_up;
   if (look.close_up > 0.0 &&
       !render::keeps_close_up(*snap_, frame_w_, frame_h_, look.close_up, look.caption_band))
     look.close_up = 0.0;
@@ -255,13 +270,17 @@ void Viewer::draw_scene() {
   gl.ClearColor(0.96f, 0.96f, 0.95f, 1.0f);
   gl.Clear(GL_COLOR_BUFFER_BIT);
   if (snap_) {
-    renderer_->draw_frame(*snap_, look_, frame_w_, frame_h_);
+    // Two beds side by side: each named in its caption band (a lesson's caption wins).
+    render::RenderSettings look = look_;
+    if (beside_ && look.caption.empty()) look.caption = opt_.scene.scene.name;
+    renderer_->draw_frame(*snap_, look, frame_w_, frame_h_);
     const render::Rect src{0.0f, 0.0f, static_cast<float>(frame_w_), static_cast<float>(frame_h_)};
     const render::Rect dst{area_.x0 * fb_scale_, area_.y0 * fb_scale_,
                            area_.x0 * fb_scale_ + static_cast<float>(frame_w_),
                            area_.y0 * fb_scale_ + static_cast<float>(frame_h_)};
     renderer_->blit_region_to_default(src, dst, fbh);
   }
+  draw_beside_frame();
   gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   gl.Viewport(0, 0, fbw, fbh);
 }
@@ -416,6 +435,7 @@ bool Viewer::busy() {
   for (;;) {
     if (script_waiting_engine_) {
       if (!engine_.wait_until_stopped(std::chrono::milliseconds(0))) return true;
+      if (beside_ && !beside_->wait_until_stopped(std::chrono::milliseconds(0))) return true;
       script_waiting_engine_ = false;
       at_target_ = -1.0;
       take_newest();  // the state where it stopped

@@ -52,6 +52,11 @@ struct ViewerOptions {
   bool lesson = false;
   // Open in the presenter mode (`view --present`; the `p` key switches it): view/presenter.cpp.
   bool present = false;
+  // A second bed beside the first (`view A --beside B`; its engine is the caller's, running), and
+  // what to call it; the scene itself, for the panel's ideal twin.
+  ViewEngine* beside = nullptr;
+  std::string beside_name;
+  Settings scene;
 };
 
 // What the window measured, printed at the end (the viewer's benchmark).
@@ -129,6 +134,12 @@ class Viewer : private ScriptTarget {
   float to_window_x(double fx) const;
   float to_window_y(double fy) const;
 
+  // The bed beside (beside.cpp): the ideal twin on or off, the beside bed's state, its frame.
+  void toggle_twin();
+  void take_beside();
+  void draw_beside_frame();
+  void draw_beside_section();
+
   // ScriptTarget: the script's commands.
   void run_to(double t) override;
   bool busy() override;
@@ -190,6 +201,19 @@ class Viewer : private ScriptTarget {
   std::vector<std::pair<double, double>> trajectory_;  // m, of the tracked particle
   std::int64_t trajectory_step_ = -1;
   float settle_edit_ = 0.5f, average_edit_ = 1.0f;  // the panel's fields (s)
+
+  // A second bed beside the first, with its own engine thread: `--beside`, or the ideal twin the
+  // panel started (own_twin_). Run, pause, step, reset, the gas and the live curve's times act on
+  // both; the ideal case and the stiffness on the first only.
+  ViewEngine* beside_ = nullptr;
+  std::unique_ptr<ViewEngine> own_twin_;
+  std::string beside_name_;
+  std::shared_ptr<const Snapshot> beside_snap_;
+  EngineStatus beside_status_;
+  std::uint64_t beside_generation_ = 0;
+  std::vector<float> beside_t_, beside_dp_;
+  render::Rect beside_area_;  // window pixels
+  int beside_w_ = 0;          // framebuffer px of its frame (frame_h_ high)
 
   // Plots (the last few thousand samples).
   std::uint64_t plot_generation_ = 0;

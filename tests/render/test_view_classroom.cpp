@@ -644,3 +644,63 @@ TEST(ViewWindow, PresenterModeOpensLargeAndThePKeySwitchesIt) {
 
 }  // namespace
 }  // namespace fluidbed::testing
+
+namespace fluidbed::testing {
+namespace {
+
+// The teacher's request: two beds side by side. `--beside` runs a second scene on its own engine;
+// the gas and a script's `at T` act on both. The panel's button opens the ideal twin beside the
+// bed and closes it again.
+TEST(ViewWindow, TwoBedsBesideShareTheControlsAndTheIdealTwinOpensAndCloses) {
+  REQUIRE_XDOTOOL();
+  const auto dir = fresh_dir("beside");
+  const std::string a = written_file(dir / "a.toml", kViewTestScene);
+  const std::string b = written_file(dir / "b.toml", kViewTestScene);
+  const std::string script = written_file(dir / "s.txt", "velocity 1.5\nat 0.02 pause\nquit\n");
+  const ViewRun r = run_view(dir, a + " --beside " + b + " --script " + script +
+                                      " --frame-size 1024x600 --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Final first = final_state(r.output);
+  EXPECT_NEAR(first.t, 0.02, 1e-3) << r.output;
+  EXPECT_NEAR(first.u, 1.5, 1e-9);
+  const auto at = r.output.find("beside: stopped at t = ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  Final second;
+  std::sscanf(r.output.c_str() + at, "beside: stopped at t = %lf s, step %lld, U = %lf", &second.t,
+              &second.steps, &second.u);
+  EXPECT_NEAR(second.t, 0.02, 1e-3);
+  EXPECT_NEAR(second.u, 1.5, 1e-9);
+  EXPECT_EQ(second.steps, first.steps);  // the same scene and step: the same count
+
+  // The ideal twin from the panel.
+  const auto dir2 = fresh_dir("twin");
+  BackgroundView v(dir2, a + " --frame-size 1024x600 --out " + (dir2 / "out").string());
+  const auto button = v.wait_for_widget("twin_button");
+  ASSERT_FALSE(button.empty()) << v.log();
+  settle_window();
+  const auto click = [&](const std::vector<std::string>& w) {
+    ASSERT_TRUE(xdotool("mousemove " + middle_of(w)));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    ASSERT_TRUE(xdotool("click 1"));
+  };
+  click(button);
+  const auto drawn = v.wait_until(
+      "beside_bed", [](const auto& w) { return w.at(4) == "drawn"; }, 60);
+  ASSERT_FALSE(drawn.empty()) << v.log();
+  const auto bed = v.widgets().at("bed0");
+  EXPECT_LE(number(bed, 2), number(drawn, 0) + 1.0);  // the twin right of the bed
+  // It runs: its time moves on.
+  const double t0 = number(v.wait_for_widget("beside"), 4);
+  EXPECT_FALSE(v.wait_until(
+                    "beside", [&](const auto& w) { return number(w, 4) > t0; }, 60)
+                   .empty());
+  click(v.widgets().at("twin_button"));
+  const auto closed = v.wait_until(
+      "twin_button", [](const auto& w) { return w.at(4) == "closed"; }, 30);
+  EXPECT_FALSE(closed.empty()) << v.log();
+  EXPECT_FALSE(v.widgets().count("beside_bed"));
+  EXPECT_TRUE(v.running());
+}
+
+}  // namespace
+}  // namespace fluidbed::testing

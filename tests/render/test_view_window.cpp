@@ -257,6 +257,11 @@ TEST(ViewCommand, BadInputIsOneLineAndStatusTwo) {
   r = run_view(dir, scene + " --script " + (dir / "missing.txt").string());
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("missing.txt"), std::string::npos) << r.output;
+  r = run_view(dir, scene + " --beside " + (dir / "nowhere.toml").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot read the scene"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nowhere.toml"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   r = run_view(dir, scene + " --set particles.colour=red");
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("colour"), std::string::npos) << r.output;
