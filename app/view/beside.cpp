@@ -36,6 +36,10 @@ void Viewer::toggle_twin() {
     return;
   }
   if (beside_) return;  // a --beside bed is there already
+  if (script_runs_the_bed() || held_) {  // it would reset the bed under the lesson
+    say("The ideal twin opens once the lesson or script has ended.");
+    return;
+  }
   ViewEngine::Options eo = engine_.options();
   eo.start_running = false;
   try {
