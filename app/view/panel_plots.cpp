@@ -195,7 +195,7 @@ void Viewer::draw_curve_plot(float height, bool for_a_class) {
   dl->PopClipRect();
   if (c.umf.ok) {
     char text[48];
-    std::snprintf(text, sizeof text, "U_mf %.2f", c.umf.umf);
+    std::snprintf(text, sizeof text, for_a_class ? "U_mf %.2f (rough)" : "U_mf %.2f", c.umf.umf);
     dl->AddText(ImVec2(a.at(c.umf.umf, a.y1).x + 3.0f, a.p0.y + 2.0f), IM_COL32(255, 220, 120, 255),
                 text);
   }

@@ -110,10 +110,16 @@ void Viewer::draw_presenter() {
   // The live Fig. 6 fills what is left above the messages' area (three lines at the foot).
   const float line = ImGui::GetTextLineHeightWithSpacing();
   const float messages = 3.0f * line + 2.0f * ImGui::GetStyle().WindowPadding.y;
-  const float chart = ImGui::GetContentRegionAvail().y - messages - 2.2f * line;
+  const float chart = ImGui::GetContentRegionAvail().y - messages - 3.2f * line;
   if (snap_ && snap_->has_gas() && chart > 4.0f * line) {
     draw_curve_plot(chart, true);
-    ImGui::TextWrapped("%s", describe_phase(st.curve).c_str());
+    std::string phase = describe_phase(st.curve);
+    // Two U_mf on the screen, each said for what it is.
+    if (st.curve.umf.ok && opt_.umf > 0.0)
+      phase += fmt(". This curve's way down puts U_mf near %.2f m/s (rough: a few short points); ",
+                   st.curve.umf.umf) +
+               fmt("the stage buttons use %.2f m/s, the packed bed held still.", opt_.umf);
+    ImGui::TextWrapped("%s", phase.c_str());
   }
   ImGui::BeginChild("present_messages", ImVec2(0.0f, 0.0f), true);
   draw_presenter_messages();
