@@ -18,6 +18,9 @@ struct GlyphQuad {
   float u0, v0, u1, v1;  // atlas coordinates in [0, 1]
 };
 
+// The code points every atlas holds (each must have a glyph in the font).
+std::vector<int> atlas_code_points();
+
 class FontAtlas {
  public:
   // `font` is kept alive by the caller; `pixel_height` the em height in px.
