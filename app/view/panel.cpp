@@ -161,12 +161,22 @@ void Viewer::draw_top_block() {
 
 // What went wrong, what to mind, what was written: in a fixed area at the panel's foot, which
 // scrolls when a message is longer than it, so that no control moves under the pointer when a
-// message comes or goes.
-void Viewer::draw_messages() {
+// message comes or goes. For a class (the presenter mode): the failure without the engine's
+// words, a blown-out bed in one sentence, no overlap warning.
+void Viewer::draw_messages(bool for_a_class) {
   const EngineStatus& st = status_;
-  if (!st.error.empty()) wrapped(kRed, st.error);
-  note_widget("error", st.error.empty() ? "none" : "shown");
+  const std::string& error = for_a_class ? st.error_plain : st.error;
+  if (!error.empty()) wrapped(kRed, error);
+  note_widget(for_a_class ? "present_error" : "error", error.empty() ? "none" : "shown");
   if (!st.refusal.empty()) wrapped(kOrange, st.refusal);
+  if (for_a_class) {
+    if (st.held_at_top > 0)
+      wrapped(kOrange,
+              "The gas has blown the bed against the top screen. Lower the gas and press "
+              "Reset.");
+    if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+    return;
+  }
   // Deep overlaps (a high gas velocity) are warned of while they last.
   if (!plot_overlap_.empty()) {
     const std::size_t recent = std::min<std::size_t>(plot_overlap_.size(), 500);

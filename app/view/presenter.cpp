@@ -36,14 +36,6 @@ bool flow_button(const char* label, bool first) {
   return ImGui::Button(label);
 }
 
-const ImVec4 kRed(1.0f, 0.45f, 0.35f, 1.0f), kOrange(1.0f, 0.75f, 0.3f, 1.0f);
-
-void wrapped(const ImVec4& colour, const std::string& text) {
-  ImGui::PushStyleColor(ImGuiCol_Text, colour);
-  ImGui::TextWrapped("%s", text.c_str());
-  ImGui::PopStyleColor();
-}
-
 }  // namespace
 
 void Viewer::draw_presenter() {
@@ -122,23 +114,10 @@ void Viewer::draw_presenter() {
     ImGui::TextWrapped("%s", phase.c_str());
   }
   ImGui::BeginChild("present_messages", ImVec2(0.0f, 0.0f), true);
-  draw_presenter_messages();
+  draw_messages(true);
   ImGui::EndChild();
   ImGui::PopFont();
   ImGui::End();
-}
-
-// What went wrong or was written, in words for a class (the full panel keeps the engine's).
-void Viewer::draw_presenter_messages() {
-  const EngineStatus& st = status_;
-  if (!st.error_plain.empty()) wrapped(kRed, st.error_plain);
-  note_widget("present_error", st.error_plain.empty() ? "none" : "shown");
-  if (!st.refusal.empty()) wrapped(kOrange, st.refusal);
-  if (st.held_at_top > 0)
-    wrapped(kOrange,
-            "The gas has blown the bed against the top screen. Lower the gas and press "
-            "Reset.");
-  if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
 }
 
 // The presenter mode's words in the whole bed's panel, each on a dark patch so that it reads

@@ -100,7 +100,7 @@ class Viewer : private ScriptTarget {
   // panel.cpp, panel_plots.cpp
   void draw_panel();
   void draw_top_block();
-  void draw_messages();
+  void draw_messages(bool for_a_class = false);
   void draw_gas_section();
   void draw_curve_section();
   void draw_bed_section();
@@ -112,7 +112,6 @@ class Viewer : private ScriptTarget {
   ImFont* font_of(float size) const;  // the largest loaded font not above `size` px
   // presenter.cpp: the presenter mode's right-hand side and its words in the bed.
   void draw_presenter();
-  void draw_presenter_messages();
   void draw_bed_labels();
   void draw_particle_info(std::size_t id, bool tooltip);
   void note_widget(const char* name, const std::string& value = "");

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -180,6 +181,62 @@ inline bool xdotool(const std::string& args) {
 }
 inline bool have_xdotool() {
   return std::system("command -v xdotool > /dev/null 2>&1") == 0;
+}
+
+// Skips a test without a display (or fails it where ctest requires one, under xvfb-run).
+#define REQUIRE_WINDOW()                                                           \
+  do {                                                                             \
+    if (!std::getenv("DISPLAY")) {                                                 \
+      if (std::getenv("FLUIDBED_REQUIRE_DISPLAY")) FAIL() << "DISPLAY is not set"; \
+      GTEST_SKIP() << "no display (ctest runs this test under xvfb-run)";          \
+    }                                                                              \
+  } while (0)
+
+#define REQUIRE_XDOTOOL()                                                                \
+  do {                                                                                   \
+    REQUIRE_WINDOW();                                                                    \
+    if (!have_xdotool()) {                                                               \
+      if (std::getenv("FLUIDBED_REQUIRE_DISPLAY")) FAIL() << "xdotool is not installed"; \
+      GTEST_SKIP() << "no xdotool (scripts/install-deps.sh installs it)";                \
+    }                                                                                    \
+  } while (0)
+
+inline double number(const std::vector<std::string>& w, std::size_t k) {
+  return std::stod(w.at(k));
+}
+
+// "viewer: stopped at t = T s, step N, U = U m/s": the engine where the window closed.
+struct Final {
+  double t = -1.0, u = -1.0;
+  long long steps = -1;
+};
+inline Final final_state(const std::string& log) {
+  Final f;
+  const auto at = log.find("viewer: stopped at t = ");
+  if (at != std::string::npos)
+    std::sscanf(log.c_str() + at, "viewer: stopped at t = %lf s, step %lld, U = %lf", &f.t,
+                &f.steps, &f.u);
+  return f;
+}
+
+// The window mapped and drawing before the pointer acts on it (its first frames come before the
+// display has given it the pointer).
+inline void settle_window() {
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+}
+
+// The window's pixel at the middle of widget W ("x y" for xdotool).
+inline std::string middle_of(const std::vector<std::string>& w) {
+  return std::to_string(static_cast<int>(0.5 * (number(w, 0) + number(w, 2)))) + " " +
+         std::to_string(static_cast<int>(0.5 * (number(w, 1) + number(w, 3))));
+}
+
+// Points at the middle of widget W, lets the window see the pointer there, and clicks; true when
+// xdotool ran.
+inline bool click_middle_of(const std::vector<std::string>& w) {
+  if (!xdotool("mousemove " + middle_of(w))) return false;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  return xdotool("click 1");
 }
 
 }  // namespace fluidbed::testing
