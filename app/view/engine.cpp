@@ -189,7 +189,9 @@ void ViewEngine::publish() {
     status_.jet_velocity = sim.gas() ? sim.gas()->jet_velocity() : 0.0;
     status_.inlet_jet_velocity = inlet;
     status_.ideal = session_.model().ideal();
-    status_.stiffness = session_.model().stiffness();
+    status_.stiffness = sim.settings().contact.law == ContactLaw::HertzMindlin
+                            ? 0.0
+                            : session_.model().stiffness();
     status_.run_until = until_step_ > sim.steps()
                             ? static_cast<double>(until_step_) * sim.settings().time.dt
                             : -1.0;

@@ -50,7 +50,7 @@ struct EngineStatus {
   double jet_velocity = 0.0;          // m/s, that setting through the slot
   double inlet_jet_velocity = 0.0;    // m/s, what the gas used at its last step
   bool ideal = false;
-  double stiffness = 0.0;        // N/m, in use
+  double stiffness = 0.0;        // N/m, in use (0: Hertz-Mindlin contacts)
   double run_until = -1.0;       // s: a script's `at T` on its way there (< 0: none)
   std::uint64_t generation = 0;  // resets so far (the plots start again)
   std::uint64_t commands_applied = 0;

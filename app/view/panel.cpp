@@ -231,7 +231,11 @@ void Viewer::draw_gas_section() {
   }
   if (ImGui::Button(st.ideal ? "Back to the scene's contacts" : "Ideal case (eta = 0, gamma = 0)"))
     post({ViewCommand::Kind::ideal, st.ideal ? 0.0 : 1.0});
-  ImGui::Text("contacts: %.0f N/m%s", st.stiffness, st.ideal ? ", damping 0, friction 0" : "");
+  const char* ideal = st.ideal ? ", damping 0, friction 0" : "";
+  if (st.stiffness > 0.0)
+    ImGui::Text("contacts: %.0f N/m%s", st.stiffness, ideal);
+  else
+    ImGui::Text("contacts: Hertz-Mindlin%s", ideal);
   draw_beside_section();
 }
 

@@ -35,6 +35,9 @@ std::string private_temp_dir() {
 Settings with_contact(const Settings& scene, bool ideal, double stiffness) {
   Settings s = scene;
   if (stiffness > 0.0 && stiffness != scene.contact.stiffness) {
+    if (scene.contact.law == ContactLaw::HertzMindlin)
+      throw InputError("the stiffness is the linear law's; this scene's contacts are "
+                       "Hertz-Mindlin (contact.youngs_modulus sets their stiffness)");
     if (!std::isfinite(stiffness)) throw InputError("the stiffness must be a finite number of N/m");
     s.contact.damping =
         damping_for_stiffness(scene.contact.damping, scene.contact.stiffness, stiffness);
@@ -50,6 +53,7 @@ Settings with_contact(const Settings& scene, bool ideal, double stiffness) {
   if (ideal) {
     s.contact.damping = 0.0;
     s.contact.friction = 0.0;
+    if (s.contact.law == ContactLaw::HertzMindlin) s.contact.restitution = 1.0;
   }
   return s;
 }

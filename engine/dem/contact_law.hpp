@@ -19,7 +19,46 @@ struct ContactParams {
   double eta_t = 0.15;  // kg/s
   double mu = 0.3;      // gamma, Coulomb friction coefficient
   double mu_r = 0.0;    // rolling resistance (rolling_torque); 0: none
+  // Hertz-Mindlin (contact.law = "hertz_mindlin", a thick slab): kn, kt, eta_n and eta_t above
+  // are then each contact's own, from its overlap (hertz_params), and these are the material's.
+  bool hertz = false;
+  double hertz_kn = 0.0;       // Pa: (4/3) Y*; the normal spring is hertz_kn sqrt(R* dn)
+  double hertz_kt = 0.0;       // Pa: 8 G*; the tangential spring is hertz_kt sqrt(R* dn)
+  double hertz_damping = 0.0;  // 2 sqrt(5/6) |beta|, beta = ln e / sqrt(ln^2 e + pi^2)
 };
+
+// The Hertz-Mindlin contact of a pair (or a sphere and a wall) with effective radius r_eff
+// (R_i R_j / (R_i + R_j); R_i at a wall) and mass m_eff (m_i m_j / (m_i + m_j); m_i at a wall) at
+// the normal displacement dn, as the linear law's parameters (Tsuji et al., Powder Technol. 71
+// (1992) 239; the form LIGGGHTS and Lethe use): with a = sqrt(r_eff dn),
+//   kn = (4/3) Y* a, so that the normal force is (4/3) Y* sqrt(r_eff) dn^(3/2);
+//   kt = 8 G* a;
+//   eta_n = 2 sqrt(5/6) |beta| sqrt(S_n m_eff), S_n = 2 Y* a = 1.5 kn;
+//   eta_t = 2 sqrt(5/6) |beta| sqrt(S_t m_eff), S_t = 8 G* a = kt.
+// Friction and rolling resistance are the linear law's. Zero for dn <= 0.
+inline ContactParams hertz_params(const ContactParams& p, double dn, double r_eff, double m_eff) {
+  ContactParams c = p;
+  const double a = std::sqrt(r_eff * std::max(dn, 0.0));
+  c.kn = p.hertz_kn * a;
+  c.kt = p.hertz_kt * a;
+  c.eta_n = p.hertz_damping * std::sqrt(1.5 * c.kn * m_eff);
+  c.eta_t = p.hertz_damping * std::sqrt(c.kt * m_eff);
+  return c;
+}
+
+// The material's constants of hertz_params for spheres of Young's modulus E (Pa), Poisson's
+// ratio nu and restitution e, against spheres and walls of the same material:
+// Y* = E / (2 (1 - nu^2)), G* = G / (2 (2 - nu)) with G = E / (2 (1 + nu)).
+inline void set_hertz(ContactParams& p, double E, double nu, double e) {
+  const double y_eff = E / (2.0 * (1.0 - nu * nu));
+  const double g_eff = E / (2.0 * (1.0 + nu)) / (2.0 * (2.0 - nu));
+  const double log_e = std::log(e);
+  const double beta = log_e / std::sqrt(log_e * log_e + std::numbers::pi * std::numbers::pi);
+  p.hertz = true;
+  p.hertz_kn = 4.0 / 3.0 * y_eff;
+  p.hertz_kt = 8.0 * g_eff;
+  p.hertz_damping = 2.0 * std::sqrt(5.0 / 6.0) * std::fabs(beta);
+}
 
 // Force on i, as components along n and t, and whether the contact slides.
 struct ContactForce {
@@ -194,6 +233,16 @@ inline double restitution_from_damping(double k, double eta, double m) {
 // restitution hangs on eta / sqrt(k m) alone, so eta scales with sqrt(k / k0).
 inline double damping_for_stiffness(double eta0, double k0, double k) {
   return eta0 * std::sqrt(k / k0);
+}
+
+// Hertz's duration of an elastic head-on impact at speed v (m/s) of effective mass m_eff and radius
+// r_eff, with hertz_kn = (4/3) Y*: 2.8683 (m_eff^2 / (r_eff Y*^2 v))^(1/5) (Johnson, Contact
+// Mechanics, 1985, sec. 11.4): twice the time to the largest compression
+// (15 m_eff v^2 / (16 Y* sqrt(r_eff)))^(2/5), 2 x 1.47164 of it over v (the integral of
+// (1 - u^(5/2))^(-1/2) over [0, 1], Gamma(7/5) Gamma(1/2) / Gamma(9/10)).
+inline double hertz_contact_duration(double hertz_kn, double r_eff, double m_eff, double v) {
+  const double y_eff = 0.75 * hertz_kn;
+  return 2.8683 * std::pow(m_eff * m_eff / (r_eff * y_eff * y_eff * v), 0.2);
 }
 
 }  // namespace fluidbed

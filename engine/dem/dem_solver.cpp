@@ -30,6 +30,9 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
       overlap_limit_(d.overlap_limit) {
   wall_params_.mu = d.wall_mu.value_or(d.contact.mu);
   depth_ = particles.has_depth();
+  if (params_.hertz && !depth_)  // the monolayer's passes have the linear law only
+    throw InputError("contact.law = \"hertz_mindlin\" needs a thick slab: domain.thickness above "
+                     "particles.diameter");
   for (std::size_t c = 0; c < walls_.size(); ++c)
     (walls_[c].nz == 0.0 ? planar_walls_ : depth_walls_).push_back(static_cast<int>(c));
   const std::size_t n = particles.size();
@@ -596,11 +599,20 @@ void DemSolver::finish_step() {
 SpringEnergy DemSolver::spring_energy() const {
   SpringEnergy e;
   const double kn = params_.kn, kt = params_.kt;
-  // ds2: the shear displacement squared (a thick slab's is a vector).
-  auto add = [&](double dn, double ds2) {
+  const std::vector<double>& r = state_.particles.radius;
+  // ds2: the shear displacement squared (a thick slab's is a vector); r_eff: the contact's R*
+  // (Hertz-Mindlin only: its normal spring stores (2/5) k dn^2 with k = hertz_kn sqrt(R* dn), its
+  // tangential one (1/2) k_t ds^2 at the current overlap).
+  auto add = [&](double dn, double ds2, double r_eff) {
     const double c = std::max(dn, 0.0);  // the normal spring acts in compression only (eq 3)
-    e.normal += 0.5 * kn * c * c;
-    e.tangential += 0.5 * kt * ds2;
+    if (params_.hertz) {
+      const double a = std::sqrt(r_eff * c);
+      e.normal += 0.4 * params_.hertz_kn * a * c * c;
+      e.tangential += 0.5 * params_.hertz_kt * a * ds2;
+    } else {
+      e.normal += 0.5 * kn * c * c;
+      e.tangential += 0.5 * kt * ds2;
+    }
   };
   auto sq = [&](const std::vector<double>& ds, const std::vector<double>& ds_y,
                 const std::vector<double>& ds_z, std::size_t k) {
@@ -608,10 +620,14 @@ SpringEnergy DemSolver::spring_energy() const {
   };
   const PairSlots& S = list_.slots();
   for (std::size_t k = 0; k < S.size(); ++k)
-    if (S.touching[k]) add(S.dn[k], sq(S.ds, S.ds_y, S.ds_z, k));
+    if (S.touching[k]) {
+      const double ri = r[static_cast<std::size_t>(S.i[k])], rj = r[static_cast<std::size_t>(S.j[k])];
+      add(S.dn[k], sq(S.ds, S.ds_y, S.ds_z, k), ri * rj / (ri + rj));
+    }
   const WallHistory& wh = state_.walls;
+  const std::size_t nw = std::max<std::size_t>(walls_.size(), 1);
   for (std::size_t s = 0; s < wh.active.size(); ++s)
-    if (wh.active[s]) add(wh.dn[s], sq(wh.ds, wh.ds_y, wh.ds_z, s));
+    if (wh.active[s]) add(wh.dn[s], sq(wh.ds, wh.ds_y, wh.ds_z, s), r[s / nw]);
   return e;
 }
 

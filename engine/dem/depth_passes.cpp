@@ -41,7 +41,7 @@ void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremen
   const Particles& P = state_.particles;
   const DepthKernelParticles pk{P.x.data(),  P.y.data(),      P.z.data(),          P.vx.data(),
                                 P.vy.data(), P.vz.data(),     P.wx.data(),         P.wy.data(),
-                                P.w.data(),  P.radius.data(), P.inv_inertia.data()};
+                                P.w.data(),  P.radius.data(), P.inv_inertia.data(),  P.mass.data()};
   NeighbourList& L = list_;
   PairSlots& S = L.slots();
   const std::int64_t k0 = acc.k0, k1 = S.first_begin[e];
@@ -190,7 +190,10 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
     double tau = dtau;
     if (fresh && incremental) tau = std::min(time_since_touch_wall(overlap, vn), dtau);
     const double dn = incremental ? wh.dn[s] + vn * tau : overlap;
-    ContactForce3 f = advance_contact(wh, s, wall_params_, dn, n, vr, tau, dtau);
+    // Hertz-Mindlin at a wall of the particles' material: R* = R_i, m* = m_i.
+    const ContactParams law = wall_params_.hertz ? hertz_params(wall_params_, dn, r[i], m[i])
+                                                 : wall_params_;
+    ContactForce3 f = advance_contact(wh, s, law, dn, n, vr, tau, dtau);
     Vec3 roll;
     if (wall_params_.mu_r > 0.0) {
       roll = rolling_torque_3d(wall_params_.mu_r, r[i], f.fn_spring, spin, inv_i[i], dtau);

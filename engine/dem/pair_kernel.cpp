@@ -181,18 +181,22 @@ __attribute__((always_inline)) inline void classify_depth_loop(const DepthKernel
 // (eqs 14-17), contact_force_3d (the shear vector turned into the contact plane, then advanced;
 // the Coulomb cap along it) and rolling_torque_3d, each value as the scalar code computes it and
 // a branch's two sides both computed, then chosen (the side not taken may divide by zero: its
-// result is dropped). One loop per displacement form and per rolling resistance, on or off.
-template <bool Incremental, bool Rolling>
+// result is dropped). One loop per displacement form, per rolling resistance, on or off, and per
+// law (Hertz-Mindlin: each contact's springs and dashpots from its overlap, as hertz_params).
+template <bool Incremental, bool Rolling, bool Hertz>
 __attribute__((always_inline)) inline void depth_loop(const DepthContactIn& in,
                                                       const DepthContactOut& out) {
   const DepthKernelParticles& p = in.p;
   const double *x = p.x, *y = p.y, *z = p.z, *vx = p.vx, *vy = p.vy, *vz = p.vz;
   const double *wx = p.wx, *wy = p.wy, *wz = p.wz, *r = p.r, *inv_i = p.inv_inertia;
+  const double* mass = p.mass;
   const std::int32_t *li = in.li, *lj = in.lj, *on = in.on;
   const double *ldn = in.dn, *lds = in.ds, *lds_y = in.ds_y, *lds_z = in.ds_z;
-  const double kn = in.params.kn, kt = in.params.kt, eta_n = in.params.eta_n,
-               eta_t = in.params.eta_t, mu = in.params.mu, mu_r = in.params.mu_r;
-  const double dtau = in.dtau, hold_k = -1.0 / kt;
+  const double kn0 = in.params.kn, kt0 = in.params.kt, eta_n0 = in.params.eta_n,
+               eta_t0 = in.params.eta_t, mu = in.params.mu, mu_r = in.params.mu_r;
+  const double hz_kn = in.params.hertz_kn, hz_kt = in.params.hertz_kt,
+               hz_damping = in.params.hertz_damping;
+  const double dtau = in.dtau, hold_k0 = -1.0 / kt0;
   const std::int64_t count = in.count;
 #pragma omp simd
   for (std::int64_t q = 0; q < count; ++q) {
@@ -232,6 +236,16 @@ __attribute__((always_inline)) inline void depth_loop(const DepthContactIn& in,
     const double s1y = turn ? (in_plane ? scale * ipy : 0.0) : s0y;
     const double s1z = turn ? (in_plane ? scale * ipz : 0.0) : s0z;
     const double sbx = s1x + tau * vtx, sby = s1y + tau * vty, sbz = s1z + tau * vtz;  // eqs 15, 17
+    double kn = kn0, kt = kt0, eta_n = eta_n0, eta_t = eta_t0, hold_k = hold_k0;
+    if constexpr (Hertz) {  // hertz_params with R* = R_i R_j / (R_i + R_j), m* = m_i m_j / (m_i + m_j)
+      const double m_eff = mass[i] * mass[j] / (mass[i] + mass[j]);
+      const double a = std::sqrt(r[i] * r[j] / R * std::max(dn, 0.0));
+      kn = hz_kn * a;
+      kt = hz_kt * a;
+      eta_n = hz_damping * std::sqrt(1.5 * kn * m_eff);
+      eta_t = hz_damping * std::sqrt(kt * m_eff);
+      hold_k = -1.0 / kt;
+    }
     const double fn_spring = -kn * std::max(dn, 0.0);                                  // eq 3
     const double fn = fn_spring - eta_n * vn;                                          // eq 6
     const double fsx = -kt * sbx, fsy = -kt * sby, fsz = -kt * sbz;                    // eq 4
@@ -283,20 +297,32 @@ __attribute__((always_inline)) inline void depth_loop(const DepthContactIn& in,
   }
 }
 
-// The four forms, the choice outside the loops.
+// The eight forms, the choice outside the loops.
 __attribute__((always_inline)) inline void depth_either(const DepthContactIn& in,
                                                         const DepthContactOut& out) {
   const bool rolling = in.params.mu_r > 0.0;
-  if (in.incremental) {
-    if (rolling) {
-      depth_loop<true, true>(in, out);
+  if (in.params.hertz) {
+    if (in.incremental) {
+      if (rolling) {
+        depth_loop<true, true, true>(in, out);
+      } else {
+        depth_loop<true, false, true>(in, out);
+      }
+    } else if (rolling) {
+      depth_loop<false, true, true>(in, out);
     } else {
-      depth_loop<true, false>(in, out);
+      depth_loop<false, false, true>(in, out);
+    }
+  } else if (in.incremental) {
+    if (rolling) {
+      depth_loop<true, true, false>(in, out);
+    } else {
+      depth_loop<true, false, false>(in, out);
     }
   } else if (rolling) {
-    depth_loop<false, true>(in, out);
+    depth_loop<false, true, false>(in, out);
   } else {
-    depth_loop<false, false>(in, out);
+    depth_loop<false, false, false>(in, out);
   }
 }
 

@@ -62,6 +62,7 @@ void pair_contacts_on(SimdBuild b, const PairContactIn& in, const PairContactOut
 // order. The particles' arrays they read:
 struct DepthKernelParticles {
   const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *inv_inertia;
+  const double* mass = nullptr;  // read by the Hertz-Mindlin law only
 };
 
 // Candidate slots [k0, k1): code[k - k0] as classify_pairs, with the distance in 3D.

@@ -39,6 +39,10 @@ bool same_law(const ContactParams& a, const ContactParams& b) {
 }
 
 void check_integrator(const Settings& s, const std::string& what) {
+  if (s.contact.law == ContactLaw::HertzMindlin)
+    throw InputError(what +
+                     "contact.law \"hertz_mindlin\": the LIGGGHTS export writes the linear law "
+                     "(model hooke) only; export the scene with contact.law = \"linear\"");
   if (s.time.integrator == Integrator::SymplecticEuler)
     throw InputError(what +
                      "time.integrator \"symplectic_euler\": LIGGGHTS integrates with velocity "

@@ -24,6 +24,8 @@ enum class SceneKind { Bed, Drop, Packing };
 enum class Placement { Lattice, Single, State, Packed };
 // How the contact displacements are found.
 enum class Displacement { Incremental, Geometric };
+// The contact's force law.
+enum class ContactLaw { Linear, HertzMindlin };
 // The particles' time integrator.
 enum class Integrator { Newmark, VelocityVerlet, SymplecticEuler };
 // What the bottom of the bed lets in.
@@ -65,6 +67,17 @@ struct Options<Displacement> {
        "the paper's eqs 13-17: displacements accumulated from increments, the first over the "
        "backward-projected time since touching"},
       {"geometric", Displacement::Geometric, "the normal overlap R_i + R_j - L"},
+  }};
+};
+
+template <>
+struct Options<ContactLaw> {
+  static constexpr std::array<OptionEntry<ContactLaw>, 2> entries{{
+      {"linear", ContactLaw::Linear,
+       "the paper's spring-dashpot (eqs 3-7): contact.stiffness and contact.damping"},
+      {"hertz_mindlin", ContactLaw::HertzMindlin,
+       "Hertz-Mindlin springs and dashpots from each contact's overlap (as LIGGGHTS and Lethe): "
+       "contact.youngs_modulus, poisson_ratio and restitution; a thick slab only"},
   }};
 };
 

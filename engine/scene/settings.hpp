@@ -73,6 +73,13 @@ struct ContactSettings {
   // "incremental": the paper's eqs 13-17 (displacements accumulated from increments, the first
   // one over the backward-projected time since touching); "geometric": delta_n = R_i + R_j - L.
   Displacement displacement = Displacement::Incremental;
+  // "linear": eqs 3-7 with stiffness and damping above. "hertz_mindlin": each contact's springs
+  // and dashpots from its overlap (dem/contact_law.hpp: hertz_params), the walls of the particles'
+  // material; the three below are then needed (and refused with "linear").
+  ContactLaw law = ContactLaw::Linear;
+  std::optional<double> youngs_modulus;  // Pa
+  std::optional<double> poisson_ratio;
+  std::optional<double> restitution;  // of a head-on impact, pairs and walls
   // Neighbour-list skin as a fraction of the largest diameter: candidate pairs are kept while
   // closer than R_i + R_j + skin, and the list is rebuilt when a particle has moved half of it.
   // Only the speed depends on it, never the results. 0.4 measured fastest (0.2 to 0.5 tried on
@@ -258,6 +265,13 @@ void visit_fields(ContactSettings& s, V&& v) {
     {"", non_negative,
      "rolling resistance mu_r: a torque mu_r R |F_n| against the relative rolling (0: none)"});
   v("displacement", s.displacement, {"", any, "how the contact displacements are found"});
+  v("law", s.law, {"", any, "the contact's force law"});
+  v("youngs_modulus", s.youngs_modulus,
+    {"Pa", positive, "\"hertz_mindlin\": Young's modulus of the particles and walls"});
+  v("poisson_ratio", s.poisson_ratio,
+    {"", Range{0.0, 0.5, false, true}, "\"hertz_mindlin\": Poisson's ratio"});
+  v("restitution", s.restitution,
+    {"", Range{0.0, 1.0, true, false}, "\"hertz_mindlin\": restitution coefficient, pairs and walls"});
   // Beyond a few diameters the list holds pairs that cannot touch before the next rebuild: each
   // sphere gets about 2.7 (1 + skin)^2 candidates in a packed slab, so a skin of 10^5 makes every
   // pair a candidate and a step cost N^2. 10 diameters (some 330 candidates a sphere) is the most

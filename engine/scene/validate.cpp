@@ -8,8 +8,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "core/errors.hpp"
+#include "dem/walls.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene_loader.hpp"
 
@@ -148,6 +150,21 @@ void validate(const Settings& s) {
       refuse("gas.cells_x",
              "makes gas cells smaller than a particle (cells must be at least one "
              "particles.diameter wide and high)");
+  }
+  const auto& law = s.contact;
+  const bool hertz = law.law == ContactLaw::HertzMindlin;
+  if (hertz && !slab_has_depth(d, p.diameter))
+    refuse("contact.law", "= \"hertz_mindlin\" needs a thick slab (domain.thickness above "
+                          "particles.diameter); a monolayer has the linear law only");
+  const std::pair<const char*, bool> hertz_keys[] = {
+      {"contact.youngs_modulus", law.youngs_modulus.has_value()},
+      {"contact.poisson_ratio", law.poisson_ratio.has_value()},
+      {"contact.restitution", law.restitution.has_value()}};
+  for (const auto& [name, given] : hertz_keys) {
+    if (hertz && !given) refuse(name, "is needed with contact.law = \"hertz_mindlin\"");
+    if (!hertz && given)
+      refuse(name, "is for contact.law = \"hertz_mindlin\"; the linear law takes "
+                   "contact.stiffness and contact.damping");
   }
   const auto& c = s.coupling;
   if (c.void_fraction == VoidFraction::Smoothed && !(c.void_fraction_length > 0.0))

@@ -18,6 +18,13 @@ namespace {
 
 std::string fmt(const char* f, double v) { return format_number(f, v); }
 
+// How `check` found the contact duration.
+std::string contact_duration_form(const Settings& s) {
+  return s.contact.law == ContactLaw::HertzMindlin
+             ? "Hertz at an impact of " + fmt("%g m/s", kHertzImpactSpeed)
+             : "pi sqrt(m / kappa)";
+}
+
 }  // namespace
 
 // Measured by `fluidbed study integrators --out DIR` (app/studies/accuracy.cpp; DIR/summary.md
@@ -51,12 +58,25 @@ SceneCheck check_scene(const Settings& s) {
   const auto& p = s.particles;
   const double d = p.diameter, k = s.contact.stiffness, eta = s.contact.damping;
   f.particle_mass = p.density * std::numbers::pi * d * d * d / 6.0;
-  f.contact_duration_wall = contact_duration(k, f.particle_mass);
-  f.contact_duration_pair = contact_duration(k, 0.5 * f.particle_mass);
+  const bool hertz = s.contact.law == ContactLaw::HertzMindlin;
+  if (hertz) {  // Hertz's duration hangs on the impact speed: taken at kHertzImpactSpeed
+    ContactParams law;
+    set_hertz(law, s.contact.youngs_modulus.value_or(0.0), s.contact.poisson_ratio.value_or(0.0),
+              s.contact.restitution.value_or(1.0));
+    f.contact_duration_wall =
+        hertz_contact_duration(law.hertz_kn, 0.5 * d, f.particle_mass, kHertzImpactSpeed);
+    f.contact_duration_pair =
+        hertz_contact_duration(law.hertz_kn, 0.25 * d, 0.5 * f.particle_mass, kHertzImpactSpeed);
+    f.restitution_wall = f.restitution_pair = s.contact.restitution.value_or(1.0);
+  } else {
+    f.contact_duration_wall = contact_duration(k, f.particle_mass);
+    f.contact_duration_pair = contact_duration(k, 0.5 * f.particle_mass);
+    f.restitution_wall = restitution_from_damping(k, eta, f.particle_mass);
+    f.restitution_pair = restitution_from_damping(k, eta, 0.5 * f.particle_mass);
+  }
   f.dt_over_tc_wall = s.time.dt / f.contact_duration_wall;
   f.dt_over_tc_pair = s.time.dt / f.contact_duration_pair;
-  f.restitution_wall = restitution_from_damping(k, eta, f.particle_mass);
-  f.restitution_pair = restitution_from_damping(k, eta, 0.5 * f.particle_mass);
+  const std::string duration_form = contact_duration_form(s);
   f.weight_per_area =
       p.count * f.particle_mass * s.physics.gravity / (s.domain.width * s.domain.thickness);
 
@@ -65,8 +85,8 @@ SceneCheck check_scene(const Settings& s) {
   const double tc = f.contact_duration_wall;
   const std::string step = "time.dt = " + fmt("%.4g s", s.time.dt) + " is " +
                            fmt("%.3g", f.dt_over_tc_wall) +
-                           " x the contact duration t_c = " + fmt("%.4g s", tc) +
-                           " (pi sqrt(m / kappa), sphere on a wall)";
+                           " x the contact duration t_c = " + fmt("%.4g s", tc) + " (" +
+                           duration_form + ", sphere on a wall)";
   const auto at = [&](double share) {
     return fmt("%.3g t_c", share) + " = " + fmt("%.3g s", share * tc);
   };
@@ -137,7 +157,7 @@ std::string describe_check(const Settings& s, const SceneCheck& c) {
     << ", time.dt = " << fmt("%.4g s", s.time.dt) << "\n";
   line("particle mass m", fmt("%.4g kg", f.particle_mass) + " (rho pi d^3 / 6)");
   line("contact duration, wall (m)",
-       fmt("%.4g s", f.contact_duration_wall) + " (pi sqrt(m / kappa_n))");
+       fmt("%.4g s", f.contact_duration_wall) + " (" + contact_duration_form(s) + ")");
   line("contact duration, pair (m / 2)", fmt("%.4g s", f.contact_duration_pair));
   line("dt / t_c, wall", fmt("%.3g", f.dt_over_tc_wall) +
                              " (t_c / dt = " + fmt("%.3g", 1.0 / f.dt_over_tc_wall) + ")");
@@ -149,7 +169,10 @@ std::string describe_check(const Settings& s, const SceneCheck& c) {
                                      fmt("%.3g s", lim.unstable * f.contact_duration_wall));
   line("accurate dt (drop error < 5 %)", fmt("%.3g t_c", lim.accurate) + " = " +
                                              fmt("%.3g s", lim.accurate * f.contact_duration_wall));
-  line("restitution, wall", fmt("%.4g", f.restitution_wall) + " (from contact.damping)");
+  line("restitution, wall",
+       fmt("%.4g", f.restitution_wall) + (s.contact.law == ContactLaw::HertzMindlin
+                                               ? " (contact.restitution)"
+                                               : " (from contact.damping)"));
   line("restitution, pair", fmt("%.4g", f.restitution_pair));
   line("bed weight per area W/A",
        fmt("%.4g Pa", f.weight_per_area) + " (N m g / (width thickness))");

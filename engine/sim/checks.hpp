@@ -39,6 +39,11 @@ struct StepLimits {
 };
 StepLimits measured_step_limits(Integrator integrator);
 
+// A Hertz-Mindlin contact's duration depends on how fast the spheres meet: `check` and the step's
+// checks take it at an impact of 1 m/s (Lethe's characteristic speed for the same purpose; a
+// fluidized bed's collisions are slower, their contacts longer, as t_c goes with v^(-1/5)).
+inline constexpr double kHertzImpactSpeed = 1.0;  // m/s
+
 // Wen & Yu (1966): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7, U_mf = Re_mf mu / (rho_g d). Their
 // two constants are a fit of Ergun's equation at a porosity at minimum fluidization of about
 // 0.4 (1 / (phi eps^3) = 14, (1 - eps) / (phi^2 eps^3) = 11 for spheres, phi = 1).

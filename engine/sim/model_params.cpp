@@ -13,6 +13,9 @@ DemParams dem_params_for(const Settings& s) {
   d.contact.mu = s.contact.friction;
   d.wall_mu = s.contact.wall_friction;
   d.contact.mu_r = s.contact.rolling_friction;
+  if (s.contact.law == ContactLaw::HertzMindlin)
+    set_hertz(d.contact, s.contact.youngs_modulus.value_or(0.0),
+              s.contact.poisson_ratio.value_or(0.0), s.contact.restitution.value_or(1.0));
   d.incremental = s.contact.displacement == Displacement::Incremental;
   d.integrator = s.time.integrator;
   d.dt = s.time.dt;

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "../test_support.hpp"
 #include "dem/contact_law.hpp"
+#include "scene/scene_loader.hpp"
+#include "sim/checks.hpp"
 
 using fluidbed::contact_force;
 using fluidbed::ContactParams;
@@ -170,4 +173,87 @@ TEST(ContactLaw, DampingScaledWithStiffnessKeepsTheRestitution) {
   EXPECT_NEAR(restitution_from_damping(10000.0, eta, m), restitution_from_damping(50000.0, 0.15, m),
               1e-14);
   EXPECT_LT(restitution_from_damping(10000.0, 0.15, m), restitution_from_damping(50000.0, 0.15, m));
+}
+
+// Hertz-Mindlin for two of van Wachem's spheres (d = 1.545 mm, 1150 kg/m^3) of E = 1e7 Pa,
+// nu = 0.3, e = 0.9, at an overlap of 1e-5 m, by hand:
+//   Y* = 1e7 / (2 x 0.91) = 5.4945e6 Pa, G* = (1e7 / 2.6) / (2 x 1.7) = 1.1312e6 Pa;
+//   R* = 3.8625e-4 m, m* = 1.1103e-6 kg, a = sqrt(R* dn) = 6.2149e-5 m;
+//   kn = (4/3) Y* a = 455.3 N/m (force 4.553e-3 N), kt = 8 G* a = 562.4 N/m;
+//   beta = ln 0.9 / sqrt(ln^2 0.9 + pi^2) = -0.033518;
+//   eta_n = 2 sqrt(5/6) 0.033518 sqrt(2 Y* a m*) = 1.6852e-3 kg/s,
+//   eta_t = 2 sqrt(5/6) 0.033518 sqrt(8 G* a m*) = 1.5293e-3 kg/s.
+TEST(ContactLaw, HertzMindlinSpringsAndDashpotsFollowTheOverlap) {
+  ContactParams p;
+  p.mu = 0.3;
+  p.mu_r = 0.025;
+  fluidbed::set_hertz(p, 1.0e7, 0.3, 0.9);
+  const double y_eff = 1.0e7 / (2.0 * 0.91), g_eff = 1.0e7 / 2.6 / 3.4;
+  EXPECT_DOUBLE_EQ(p.hertz_kn, 4.0 / 3.0 * y_eff);
+  EXPECT_DOUBLE_EQ(p.hertz_kt, 8.0 * g_eff);
+  const double r = 0.5 * 1.545e-3, m = 1150.0 * std::numbers::pi * std::pow(1.545e-3, 3) / 6.0;
+  const ContactParams c = fluidbed::hertz_params(p, 1e-5, 0.5 * r, 0.5 * m);
+  EXPECT_NEAR(c.kn, 455.3, 0.1);
+  EXPECT_NEAR(c.kn * 1e-5, 4.553e-3, 1e-6);  // (4/3) Y* sqrt(R*) dn^(3/2)
+  EXPECT_NEAR(c.kt, 562.4, 0.1);
+  EXPECT_NEAR(c.eta_n, 1.6852e-3, 1e-7);
+  EXPECT_NEAR(c.eta_t, 1.5293e-3, 1e-7);
+  EXPECT_EQ(c.mu, 0.3);  // friction and rolling resistance are the linear law's
+  EXPECT_EQ(c.mu_r, 0.025);
+  // Four times the overlap: springs twice as stiff (a ~ sqrt(dn)), dashpots sqrt(2) stronger.
+  const ContactParams c4 = fluidbed::hertz_params(p, 4e-5, 0.5 * r, 0.5 * m);
+  EXPECT_NEAR(c4.kn / c.kn, 2.0, 1e-12);
+  EXPECT_NEAR(c4.eta_n / c.eta_n, std::sqrt(2.0), 1e-12);
+  // Apart: nothing; elastic (e = 1): no dashpots.
+  const ContactParams apart = fluidbed::hertz_params(p, -1e-6, 0.5 * r, 0.5 * m);
+  EXPECT_EQ(apart.kn, 0.0);
+  EXPECT_EQ(apart.eta_t, 0.0);
+  ContactParams elastic;
+  fluidbed::set_hertz(elastic, 1.0e7, 0.3, 1.0);
+  EXPECT_EQ(fluidbed::hertz_params(elastic, 1e-5, 0.5 * r, 0.5 * m).eta_n, 0.0);
+}
+
+// Hertz's duration, for the pair above meeting at 0.5 m/s: the scene van_wachem_2001.toml's
+// comment gives 1.33e-4 s (2.87 (m*^2 / (R* Y*^2 v))^(1/5)); it grows as v^(-1/5).
+TEST(ContactLaw, HertzDurationIsJohnsonsClosedForm) {
+  ContactParams p;
+  fluidbed::set_hertz(p, 1.0e7, 0.3, 0.9);
+  const double r = 0.5 * 1.545e-3, m = 1150.0 * std::numbers::pi * std::pow(1.545e-3, 3) / 6.0;
+  const double t = fluidbed::hertz_contact_duration(p.hertz_kn, 0.5 * r, 0.5 * m, 0.5);
+  EXPECT_NEAR(t, 1.3264e-4, 0.0001e-4);
+  EXPECT_NEAR(fluidbed::hertz_contact_duration(p.hertz_kn, 0.5 * r, 0.5 * m, 16.0) / t,
+              std::pow(32.0, -0.2), 1e-12);
+}
+
+// The law's keys: Hertz-Mindlin needs its three material values and a thick slab; the linear law
+// refuses them (they would be silently ignored); the check reports Hertz's duration.
+TEST(ContactLaw, HertzMindlinKeysAreCheckedInOneLine) {
+  using fluidbed::testing::scene_error;
+  const std::string thick = "[domain]\nthickness = 0.012\n";
+  const std::vector<std::string> hertz = {"contact.law=hertz_mindlin", "contact.youngs_modulus=1e7",
+                                          "contact.poisson_ratio=0.3", "contact.restitution=0.9"};
+  EXPECT_EQ(scene_error(thick, hertz), "");
+  EXPECT_NE(scene_error("", hertz).find("needs a thick slab"), std::string::npos);
+  for (std::size_t k = 1; k < hertz.size(); ++k) {
+    std::vector<std::string> missing = hertz;
+    missing.erase(missing.begin() + static_cast<std::ptrdiff_t>(k));
+    const std::string key = hertz[k].substr(0, hertz[k].find('='));
+    EXPECT_EQ(scene_error(thick, missing), key + " is needed with contact.law = \"hertz_mindlin\"");
+    EXPECT_EQ(scene_error(thick, {hertz[k]}).rfind(key + " is for contact.law", 0), 0u) << key;
+  }
+  EXPECT_NE(scene_error(thick, {"contact.law=hertz"}).find("expected one of: linear, hertz_mindlin"),
+            std::string::npos);
+  EXPECT_NE(scene_error(thick, {"contact.law=hertz_mindlin", "contact.youngs_modulus=1e7",
+                                "contact.poisson_ratio=0.5", "contact.restitution=0.9"})
+                .find("contact.poisson_ratio"),
+            std::string::npos);
+  const fluidbed::Settings s = fluidbed::parse_scene(thick, "t.toml", hertz);
+  const fluidbed::SceneCheck c = fluidbed::check_scene(s);
+  const double m = 2700.0 * std::numbers::pi * std::pow(0.004, 3) / 6.0;  // the default sphere
+  ContactParams p;
+  fluidbed::set_hertz(p, 1e7, 0.3, 0.9);
+  EXPECT_DOUBLE_EQ(c.figures.contact_duration_wall,
+                   fluidbed::hertz_contact_duration(p.hertz_kn, 0.002, m, 1.0));
+  EXPECT_EQ(c.figures.restitution_pair, 0.9);
+  EXPECT_NE(fluidbed::describe_check(s, c).find("Hertz at an impact of 1 m/s"), std::string::npos);
 }

@@ -280,14 +280,14 @@ namespace {
 // contact plane, so that it is turned into it), zero, or along the normal (nothing left in the
 // plane).
 struct DepthPairs {
-  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, r, inv_i;
+  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, r, inv_i, mass;
   std::vector<std::int32_t> li, lj;
   std::vector<double> dn, ds, ds_y, ds_z;
   std::vector<std::int32_t> on;
 
   fluidbed::DepthKernelParticles particles() const {
-    return {x.data(),  y.data(),  z.data(),  vx.data(), vy.data(),   vz.data(),
-            wx.data(), wy.data(), wz.data(), r.data(),  inv_i.data()};
+    return {x.data(),  y.data(),  z.data(),  vx.data(),    vy.data(),   vz.data(),
+            wx.data(), wy.data(), wz.data(), r.data(),     inv_i.data(), mass.data()};
   }
 };
 
@@ -320,6 +320,7 @@ DepthPairs random_depth_pairs(std::size_t n, std::uint64_t seed) {
       s.wz.push_back(rest ? 1.0 : 1000.0 * u(rng) - 500.0);
       const double m = 1150.0 * 4.0 / 3.0 * std::numbers::pi * rad * rad * rad;
       s.inv_i.push_back(1.0 / (0.4 * m * rad * rad));
+      s.mass.push_back(m);
     }
     s.li.push_back(static_cast<std::int32_t>(2 * q));
     s.lj.push_back(static_cast<std::int32_t>(2 * q + 1));
@@ -374,7 +375,11 @@ DepthContact scalar_depth_contact(const DepthPairs& s, std::int32_t slot, const 
   const double dn0 = fresh ? 0.0 : s.dn[k];
   Vec3 shear = fresh ? Vec3{} : Vec3{s.ds[k], s.ds_y[k], s.ds_z[k]};
   const double dn = incremental ? dn0 + fluidbed::dot(vr, n) * tau : R - Lc;
-  fluidbed::ContactForce3 f = fluidbed::contact_force_3d(p, dn, shear, n, vr, tau, dtau);
+  const ContactParams law =
+      p.hertz ? fluidbed::hertz_params(p, dn, s.r[i] * s.r[j] / R,
+                                       s.mass[i] * s.mass[j] / (s.mass[i] + s.mass[j]))
+              : p;
+  fluidbed::ContactForce3 f = fluidbed::contact_force_3d(law, dn, shear, n, vr, tau, dtau);
   Vec3 roll;
   if (p.mu_r > 0.0) {
     const Vec3 w_rel{s.wx[i] - s.wx[j], s.wy[i] - s.wy[j], s.wz[i] - s.wz[j]};
@@ -406,7 +411,8 @@ struct DepthOutputs {
 // rolling_torque_3d to the bit (history with
 // the turned shear vector, force, lever, rolling torque, overlap ratio, losses, sliding), both
 // displacement forms, with and without rolling resistance, for the paper's law, van Wachem's
-// soft one and the corner cases (no tangential spring, no friction, no dashpots).
+// soft one, the corner cases (no tangential spring, no friction, no dashpots) and Hertz-Mindlin
+// (van Wachem's material as Lethe gives it; elastic and frictionless; stiff glass).
 TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
   const DepthPairs s = random_depth_pairs(4099, 4);
   // First which pairs touch (slots from 5 on), as the scalar pass decided with dot(p, p).
@@ -426,7 +432,7 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
         const double L2 = fluidbed::dot(d, d), R = s.r[i] + s.r[j];
         return L2 <= 0.0 ? 2 : (L2 < R * R ? 1 : 0);
       });
-  const std::vector<ContactParams> laws = {
+  std::vector<ContactParams> laws = {
       {50000.0, 50000.0, 0.15, 0.15, 0.3, 0.0},      // the paper's
       {624.0, 624.0, 0.00176, 0.00176, 0.3, 0.025},  // van Wachem's, rolling resistance
       {50000.0, 0.0, 0.15, 0.15, 0.3, 0.1},          // no tangential spring
@@ -434,12 +440,19 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
       {50000.0, 14285.7, 0.0, 0.0, 0.3, 0.4},        // undamped, strong rolling resistance
       {1.0e6, 8.0e5, 2.5, 1.1, 0.45, 0.0},           // stiff
   };
+  for (const auto& [E, nu, e, mu, mu_r] : {std::array<double, 5>{1.0e7, 0.3, 0.9, 0.3, 0.025},
+                                           std::array<double, 5>{1.0e7, 0.3, 1.0, 0.0, 0.0},
+                                           std::array<double, 5>{6.3e10, 0.23, 0.5, 0.45, 0.0}}) {
+    ContactParams h{0.0, 0.0, 0.0, 0.0, mu, mu_r};
+    fluidbed::set_hertz(h, E, nu, e);
+    laws.push_back(h);
+  }
   const auto count = static_cast<std::int64_t>(s.on.size());
   const auto n = static_cast<std::size_t>(count);
   const char* names[16] = {"dn",     "ds",      "ds_y",    "ds_z",    "fx",     "fy",
                            "fz",     "lever_x", "lever_y", "lever_z", "roll_x", "roll_y",
                            "roll_z", "ratio",   "dashpot", "friction"};
-  int sliding = 0, sticking = 0, fresh = 0, apart = 0, rolling = 0, turned = 0;
+  int sliding = 0, sticking = 0, fresh = 0, apart = 0, rolling = 0, turned = 0, hertz = 0;
   const int builds = for_every_build_law_and_form(
       laws.size(), [&](SimdBuild b, std::size_t law, bool incremental, double dtau) {
         std::vector<double> hdn = s.dn, hds = s.ds, hdy = s.ds_y, hdz = s.ds_z;
@@ -466,6 +479,7 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
           apart += want.v[13] <= 0.0;
           rolling += want.v[10] != 0.0;
           turned += s.on[q] >= 0 && s.ds[static_cast<std::size_t>(s.on[q])] != 0.0;
+          hertz += laws[law].hertz && want.v[4] != 0.0;
         }
       });
   EXPECT_GE(builds, 1);
@@ -475,6 +489,7 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
   EXPECT_GT(apart, 100);
   EXPECT_GT(rolling, 1000);
   EXPECT_GT(turned, 1000);
+  EXPECT_GT(hertz, 1000);
 
   // The build the loader chose gives the baseline's bits.
   for (const bool incremental : {true, false}) {
