@@ -3,6 +3,7 @@
 // two spheres meeting off the plane, with the springs' stored energy (DemSolver::spring_energy)
 // accounting for the kinetic energy in between; a damped one rebounds with the restitution of the
 // law integrated finely, the same at every speed (the point of Tsuji's dashpot).
+// (A Hertz slab packed on one and two threads: test_thick_slab.cpp.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +13,6 @@
 #include "../test_support.hpp"
 #include "dem/dem_solver.hpp"
 #include "sim/model_params.hpp"
-#include "sim/placement.hpp"
 
 using namespace fluidbed;
 using namespace fluidbed::testing;
@@ -187,47 +187,4 @@ TEST(HertzContact, DampedWallImpactRestitutesAsTheLawIntegratedFinelyAtEverySpee
         v, e, e_ode, ode(v), e_in);
     EXPECT_NEAR(e, e_ode, 1e-3) << v;
   }
-}
-
-TEST(HertzContact, PackedSlabSettlesTheSameOnOneAndTwoThreads) {
-  // 400 spheres dropped from the random lattice into a slab 3 diameters deep with Hertz-Mindlin
-  // contacts (friction 0.3, rolling resistance 0.025): they settle between the walls with the
-  // state hash the same bits on one and two threads.
-  Settings s;
-  s.domain.width = 0.06;
-  s.domain.height = 0.2;
-  s.domain.thickness = 0.012;
-  s.particles.count = 400;
-  s.particles.seed = 3;
-  s.contact.law = ContactLaw::HertzMindlin;
-  s.contact.youngs_modulus = kE;
-  s.contact.poisson_ratio = kNu;
-  s.contact.restitution = 0.9;
-  s.contact.rolling_friction = 0.025;
-  auto run = [&](int threads) {
-    s.threads = threads;
-    DemSolver dem(dem_params_for(s), place_particles(s));
-    const auto steps = static_cast<std::int64_t>(0.45 / s.time.dt);
-    for (std::int64_t k = 0; k < steps; ++k) dem.step();
-    return dem;
-  };
-  const DemSolver one = run(1);
-  const DemSolver two = run(2);
-  EXPECT_EQ(one.state_hash(), two.state_hash());
-  const Particles& p = one.particles();
-  double z_lo = 1.0, z_hi = 0.0, top = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    z_lo = std::min(z_lo, p.z[i]);
-    z_hi = std::max(z_hi, p.z[i]);
-    top = std::max(top, p.y[i]);
-  }
-  std::printf("settled: top centre %.4f m, z from %.4f to %.4f m, %d pair contacts, KE %.2e J\n",
-              top, z_lo, z_hi, one.diagnostics().pair_contacts, one.diagnostics().kinetic_energy);
-  EXPECT_GT(z_lo, kR * 0.99);
-  EXPECT_LT(z_hi, 0.012 - kR * 0.99);
-  // As the linear slab (ThickSlab.PackedSlab...): 400 spheres at a solid fraction of 0.5 to 0.65
-  // fill 0.06 x 0.012 m to 2.9-3.7 cm.
-  EXPECT_GT(top, 0.024);
-  EXPECT_LT(top, 0.04);
-  EXPECT_LT(one.diagnostics().kinetic_energy, 1e-5);
 }

@@ -1,7 +1,7 @@
 // The particle step in three dimensions (a slab thicker than one diameter) against closed forms:
 // an oblique impact on the front wall, two spheres colliding off the plane, a sphere sliding then
 // rolling at 5/7 in any direction of the floor, rolling resistance bringing one to rest; and a
-// small thick slab packed on one and two threads.
+// small thick slab packed on one and two threads, with the linear law and with Hertz-Mindlin.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -232,11 +232,12 @@ TEST(ThickSlab, RollingResistanceStopsASphereAtTheClosedFormDistanceInAnyDirecti
   EXPECT_NEAR(std::atan2(p.z[0] - 0.5, p.x[0] - 0.02), a, 1e-6);
 }
 
-TEST(ThickSlab, PackedSlabSettlesInsideItsWallsTheSameOnOneAndTwoThreads) {
-  // 400 spheres dropped from the random lattice (random depths) into a slab 3 diameters deep:
-  // they settle between all six walls, touching across the depth, with the state hash the
-  // same bits on one and two threads.
-  Settings s = thick_bed(400, 0.06, 0.012, 3);
+namespace {
+
+// 400 spheres of s dropped from the random lattice (random depths) into its slab, 3 diameters
+// deep: they settle between all six walls, touching across the depth, with the state hash the
+// same bits on one and two threads.
+void expect_slab_settles(Settings s) {
   auto run = [&](int threads) {
     s.threads = threads;
     DemSolver dem(dem_params_for(s), place_particles(s));
@@ -269,6 +270,24 @@ TEST(ThickSlab, PackedSlabSettlesInsideItsWallsTheSameOnOneAndTwoThreads) {
   EXPECT_LT(top, 0.04);
   EXPECT_LT(one.diagnostics().kinetic_energy, 1e-5);
   EXPECT_GT(one.diagnostics().wall_contacts, 100);  // front and back walls carry spheres
+}
+
+}  // namespace
+
+TEST(ThickSlab, PackedSlabSettlesInsideItsWallsTheSameOnOneAndTwoThreads) {
+  expect_slab_settles(thick_bed(400, 0.06, 0.012, 3));
+}
+
+TEST(ThickSlab, HertzMindlinSlabSettlesInsideItsWallsTheSameOnOneAndTwoThreads) {
+  // The same with the peer's law for van Wachem's bed (Lethe: E 1e7 Pa, nu 0.3, e 0.9, rolling
+  // resistance 0.025) on the paper's spheres.
+  Settings s = thick_bed(400, 0.06, 0.012, 3);
+  s.contact.law = ContactLaw::HertzMindlin;
+  s.contact.youngs_modulus = 1.0e7;
+  s.contact.poisson_ratio = 0.3;
+  s.contact.restitution = 0.9;
+  s.contact.rolling_friction = 0.025;
+  expect_slab_settles(s);
 }
 
 TEST(ThickSlab, StateFileRestartsTheSameBits) {
