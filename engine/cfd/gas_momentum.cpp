@@ -156,7 +156,11 @@ void GasSolver::assemble_v(const double* u, const double* v, const double* eps, 
         out[f] = val;
       } else {
         const double t = rho * vcv * inv_dt;
-        const double a = (t * ev_new_[f] + 0.5 * ap) / alpha;
+        // The plate: a force -ev ay K (ev v) on the face's volume, implicit, so that in a steady
+        // flow the pressure (whose force is ev ay dp) drops by K times the superficial velocity.
+        const double plate =
+            j == params_.plate_row ? params_.plate_resistance * ev_new_[f] * ev_new_[f] * ay : 0.0;
+        const double a = (t * ev_new_[f] + 0.5 * ap + plate) / alpha;
         cv_.ap[f] = a;
         cv_.inv_ap[f] = 1.0 / a;
         cv_.ae[f] = 0.5 * ae;

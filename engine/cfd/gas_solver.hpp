@@ -85,6 +85,11 @@ struct GasParams {
   // 3550 Pa). false: to the wall (the usual staggered discretization): unbiased pressure, and
   // force_on_gas() + force_on_walls() = -sum F_c dV. See tests/unit/test_gas_balance.cpp.
   bool wall_force_to_interior = true;
+  // A distributor plate on the row of bottom faces plate_row (the particles' floor over a
+  // plenum): the pressure drops across it by plate_resistance times the superficial velocity
+  // through it (Pa s/m; 0: no plate).
+  double plate_resistance = 0.0;
+  int plate_row = 0;
 };
 
 // m/s: the gas speed through the slots of a jet inlet, `jets` slots of jet_width (m) each in a

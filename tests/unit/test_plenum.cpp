@@ -109,6 +109,32 @@ TEST(Plenum, TheSceneKeyExtendsTheGasGridBelowTheFloor) {
             std::string::npos);
 }
 
+// The distributor plate: its resistance from the pressure drop at the scene's U, on the row of
+// faces the floor lies on; refused without a plenum, without a velocity, or with the floor inside
+// a cell.
+TEST(Plenum, TheDistributorPlateSitsOnTheFloorsFaces) {
+  using fluidbed::testing::scene_error;
+  const Settings s = parse_scene("[gas]\ncells_y = 47\n", "t.toml",
+                                 {"inlet.plenum_height=0.04", "inlet.superficial_velocity=2.5",
+                                  "inlet.distributor_pressure_drop=1000"});
+  const GasParams p = fluidbed::gas_params_for(s);
+  EXPECT_EQ(p.plate_row, 2);                  // 0.04 m of 0.02 m cells
+  EXPECT_DOUBLE_EQ(p.plate_resistance, 400.0);  // Pa s/m: 1000 Pa at 2.5 m/s
+  EXPECT_EQ(fluidbed::gas_params_for(parse_scene("[gas]\n", "t.toml")).plate_resistance, 0.0);
+  EXPECT_NE(scene_error("[gas]\n", {"inlet.distributor_pressure_drop=1000"})
+                .find("needs a plenum"),
+            std::string::npos);
+  EXPECT_NE(scene_error("[gas]\ncells_y = 47\n",
+                        {"inlet.plenum_height=0.04", "inlet.superficial_velocity=0",
+                         "inlet.distributor_pressure_drop=1000"})
+                .find("superficial_velocity, which is 0"),
+            std::string::npos);
+  EXPECT_NE(scene_error("[gas]\ncells_y = 47\n",
+                        {"inlet.plenum_height=0.03", "inlet.distributor_pressure_drop=1000"})
+                .find("a whole number of cells"),
+            std::string::npos);
+}
+
 TEST(Plenum, TheDpmFoamExportRefusesIt) {
   // The case's mesh starts at the particles' floor: a plenum is refused by name, not dropped.
   const Settings s = parse_scene("[gas]\n", "t.toml", {"inlet.plenum_height=0.04"});

@@ -96,3 +96,56 @@ TEST(PlenumRun, SameBitsOnOneAndTwoThreads) {
   }
   EXPECT_EQ(one.state_hash(), two.state_hash());
 }
+
+TEST(PlenumRun, ADistributorPlateDropsItsPressureInProportionAndSpreadsTheGas) {
+  // The fixed bed of the first test over a 4 cm plenum, blown uniformly, with and without a
+  // plate at the floor whose pressure drop is 300 Pa at the scene's 1.5 m/s: the plenum's
+  // pressure rises by 300 Pa, the bed's does not move; at 0.75 m/s the plate drops 150 Pa
+  // (in proportion to the flow: Darcy's law).
+  const auto fixed = [](double plate) {
+    return std::vector<std::string>{"particles.frozen=true",
+                                    "particles.fill_height=0.1",
+                                    "particles.count=925",
+                                    "inlet.kind=\"uniform\"",
+                                    "inlet.superficial_velocity=1.5",
+                                    "inlet.distributor_pressure_drop=" + std::to_string(plate),
+                                    "gas.tolerance=1e-9"};
+  };
+  auto settle = [](Simulation& sim, double u) {
+    sim.set_superficial_velocity(u);
+    for (int k = 0; k < 400; ++k) sim.step();
+  };
+  auto p_at = [](const Simulation& sim, double y) {
+    const GasSolver& g = *sim.gas();
+    return probe_pressure(g.grid(), g.pressure(), 0.075, y);
+  };
+  for (const double u : {1.5, 0.75}) {
+    Simulation plate(plenum_bed(0.04, fixed(300.0), 0.01)), free(plenum_bed(0.04, fixed(0.0), 0.01));
+    settle(plate, u);
+    settle(free, u);
+    const double in_plenum = p_at(plate, -0.02) - p_at(free, -0.02);
+    const double in_bed = p_at(plate, 0.05) - p_at(free, 0.05);
+    const double bed = p_at(free, 0.05);
+    std::printf("U %.2f m/s: the plenum's pressure %.2f Pa above the free floor's (300 U / 1.5 "
+                "= %.1f), the bed's %.3f Pa (of %.1f Pa)\n",
+                u, in_plenum, 300.0 * u / 1.5, in_bed, bed);
+    EXPECT_NEAR(in_plenum, 300.0 * u / 1.5, 0.01 * 300.0 * u / 1.5) << u;
+    EXPECT_NEAR(in_bed, 0.0, 0.01 * bed) << u;  // 1 %: the plate only adds below the floor
+  }
+
+  // The paper's jet into the fixed bed through a plate of a third of the bed's weight per area:
+  // the gas crosses the floor spread over more columns than through the free floor.
+  auto jetted = [&](double plate) {
+    Simulation sim(plenum_bed(0.04, {"particles.frozen=true", "particles.fill_height=0.1",
+                                     "particles.count=925", "inlet.distributor_pressure_drop=" +
+                                                                std::to_string(plate)},
+                              0.01));
+    for (int k = 0; k < 400; ++k) sim.step();
+    return fastest_up_at_floor(sim, 4) / sim.gas()->superficial_velocity();
+  };
+  const double through_plate = jetted(1200.0), through_free = jetted(0.0);
+  std::printf("the jet's fastest gas over the floor: %.2f U through the plate, %.2f U through "
+              "the free floor\n",
+              through_plate, through_free);
+  EXPECT_LT(through_plate, 0.8 * through_free);
+}
