@@ -24,6 +24,7 @@ Settings packing_settings_for(const Settings& bed) {
   p.particles.frozen = false;
   p.inlet.kind = InletKind::None;
   p.inlet.superficial_velocity = 0.0;
+  p.inlet.distributor_resistance = 0.0;  // no gas crosses the floor: the bed's own packing serves
   p.time.end = bed.particles.packing_time;
   p.diagnostics = DiagnosticsSettings{};
   p.diagnostics.overlap_limit = bed.diagnostics.overlap_limit;

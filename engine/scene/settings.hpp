@@ -127,10 +127,10 @@ struct InletSettings {
   // m: the gas enters this far below the particles' floor, which it crosses freely (Lethe's van
   // Wachem example: 4 cm under a floor wall permeable to the gas). 0: at the floor.
   double plenum_height = 0.0;
-  // Pa: a distributor plate at the floor, over a plenum, that resists the gas in proportion to
-  // the flow through it: this pressure drop at the scene's superficial_velocity (a porous plate's
-  // resistance, Darcy's law). 0: the floor lets the gas cross freely, as Lethe's floating wall.
-  double distributor_pressure_drop = 0.0;
+  // Pa s/m: a distributor plate at the floor, over a plenum, that resists the gas in proportion
+  // to the flow through it (a porous plate, Darcy's law): its pressure drop per m/s of
+  // superficial velocity. 0: the floor lets the gas cross freely, as Lethe's floating wall.
+  double distributor_resistance = 0.0;
 };
 
 struct CouplingSettings {
@@ -333,10 +333,10 @@ void visit_fields(InletSettings& s, V&& v) {
   v("jets", s.jets, {"", at_least(1), "jet slots, one every width / jets"});
   v("plenum_height", s.plenum_height,
     {"m", non_negative, "gas below the particles' floor, which it crosses freely (0: none)"});
-  v("distributor_pressure_drop", s.distributor_pressure_drop,
-    {"Pa", non_negative,
-     "with a plenum: a plate at the floor whose pressure drop, in proportion to the flow, is this "
-     "at superficial_velocity (0: none)"});
+  v("distributor_resistance", s.distributor_resistance,
+    {"Pa s/m", non_negative,
+     "with a plenum: a plate at the floor whose pressure drop is this times the superficial "
+     "velocity through it (0: none)"});
 }
 template <class V>
 void visit_fields(CouplingSettings& s, V&& v) {

@@ -190,17 +190,14 @@ void validate(const Settings& s) {
              std::string(where) + " outside the gas domain (" + domain + ")");
     }
   }
-  if (s.inlet.distributor_pressure_drop > 0.0) {
+  if (s.inlet.distributor_resistance > 0.0) {
     const auto& in = s.inlet;
     if (!(in.plenum_height > 0.0))
-      refuse("inlet.distributor_pressure_drop",
+      refuse("inlet.distributor_resistance",
              "needs a plenum under the plate (inlet.plenum_height > 0)");
-    if (!(in.superficial_velocity > 0.0))
-      refuse("inlet.distributor_pressure_drop",
-             "is the plate's pressure drop at inlet.superficial_velocity, which is 0");
     const double dy = (d.height + in.plenum_height) / g.cells_y, rows = in.plenum_height / dy;
     if (std::fabs(rows - std::round(rows)) > 1e-6)
-      refuse("inlet.distributor_pressure_drop",
+      refuse("inlet.distributor_resistance",
              "needs the floor on a gas cell boundary: inlet.plenum_height a whole number of "
              "cells high (now " + std::to_string(rows) + ")");
   }

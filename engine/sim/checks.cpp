@@ -205,12 +205,12 @@ std::string describe_check(const Settings& s, const SceneCheck& c) {
     if (s.inlet.plenum_height > 0.0)
       line("plenum", fmt("%.3g m", s.inlet.plenum_height) + " of gas under the floor (" +
                          fmt("%.3g", s.inlet.plenum_height / dy) + " cells)");
-    if (s.inlet.distributor_pressure_drop > 0.0)
-      line("distributor plate",
-           fmt("%.4g Pa", s.inlet.distributor_pressure_drop) + " at " +
-               fmt("%g m/s", s.inlet.superficial_velocity) + " (" +
-               fmt("%.3g", s.inlet.distributor_pressure_drop / f.weight_per_area) +
-               " W/A), in proportion to the flow");
+    if (s.inlet.distributor_resistance > 0.0) {
+      const double drop = s.inlet.distributor_resistance * s.inlet.superficial_velocity;
+      line("distributor plate", fmt("%.4g Pa s/m", s.inlet.distributor_resistance) + ": " +
+                                    fmt("%.4g Pa", drop) + " at U (" +
+                                    fmt("%.3g", drop / f.weight_per_area) + " W/A)");
+    }
     line("gas step dt_gas",
          fmt("%.4g s", f.gas_dt) + " (time.dt x coupling.particle_steps_per_gas_step)");
     line("gas CFL at the jet velocity", fmt("%.3g", f.gas_cfl_at_jet) +

@@ -62,11 +62,11 @@ GasParams gas_params_for(const Settings& s) {
   // check counts force_on_gas + force_on_walls.
   p.wall_force_to_interior = false;
   // The distributor plate at the floor: the v faces of the row the floor lies on (validate.cpp
-  // holds the floor to a cell boundary), its resistance from the pressure drop at the scene's U.
-  if (s.inlet.distributor_pressure_drop > 0.0) {
+  // holds the floor to a cell boundary).
+  if (s.inlet.distributor_resistance > 0.0) {
     const GasGrid g = gas_grid_for(s);
     p.plate_row = static_cast<int>(std::lround(s.inlet.plenum_height / g.dy()));
-    p.plate_resistance = s.inlet.distributor_pressure_drop / s.inlet.superficial_velocity;
+    p.plate_resistance = s.inlet.distributor_resistance;
   }
   return p;
 }
