@@ -4,7 +4,7 @@
 // against the outlet, the highest particle, statistics from 2 s. The experiment's figures are
 // printed beside ours. The regime (bubbling) and a regular cycle at the probe are what the
 // experiment shows: since the gas enters through the peer's plenum, both packings measured
-// (docs/validation.md (d)) bubble with a regular cycle, and so must this run. The frequency
+// (docs/second-bed.md) bubble with a regular cycle, and so must this run. The frequency
 // (2.9 Hz against 2.3 to 2.4) is reported, not asserted: it is not reproduced yet (issue 35).
 #include <gtest/gtest.h>
 
