@@ -12,6 +12,7 @@
 #include "core/text_format.hpp"
 #include "dem/contact_law.hpp"
 #include "dem/walls.hpp"
+#include "sim/model_params.hpp"
 
 namespace fluidbed {
 namespace {
@@ -60,9 +61,7 @@ SceneCheck check_scene(const Settings& s) {
   f.particle_mass = p.density * std::numbers::pi * d * d * d / 6.0;
   const bool hertz = s.contact.law == ContactLaw::HertzMindlin;
   if (hertz) {  // Hertz's duration hangs on the impact speed: taken at kHertzImpactSpeed
-    ContactParams law;
-    set_hertz(law, s.contact.youngs_modulus.value_or(0.0), s.contact.poisson_ratio.value_or(0.0),
-              s.contact.restitution.value_or(1.0));
+    const ContactParams law = dem_params_for(s).contact;  // the run's own material constants
     f.contact_duration_wall =
         hertz_contact_duration(law.hertz_kn, 0.5 * d, f.particle_mass, kHertzImpactSpeed);
     f.contact_duration_pair =
