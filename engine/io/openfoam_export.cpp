@@ -72,12 +72,15 @@ struct Segment {
 struct Mesh {
   std::vector<Segment> segments;
   bool uniform_cells = true;  // every cell dx wide, as the scene's grid
+  bool thick = false;         // a slab the spheres move through (slab_has_depth): walls front
+                              // and back; otherwise empty patches, the spheres on the mid-plane
 };
 
 Mesh mesh_for(const Settings& s) {
   const int nx = s.gas.cells_x;
   const double w = s.domain.width, dx = w / nx;
   Mesh m;
+  m.thick = slab_has_depth(s.domain, s.particles.diameter);
   if (s.inlet.kind != InletKind::Jet) {
     m.segments.push_back({0.0, w, nx, s.inlet.kind == InletKind::Uniform});
     return m;
@@ -167,8 +170,13 @@ void write_block_mesh(std::ostream& out, const Settings& s, const Mesh& m) {
     out << "            (" << v(i, 1, 0) << ' ' << v(i, 1, 1) << ' ' << v(i + 1, 1, 1) << ' '
         << v(i + 1, 1, 0) << ")\n";
   out << "        );\n    }\n";
-  out << "    frontAndBack  // the pseudo-2-D slab: no front or back walls (see "
-         "kinematicCloudProperties)\n    {\n        type empty;\n        faces\n        (\n";
+  if (m.thick)
+    out << "    frontAndBack  // the slab's front and back: walls for the spheres, slip for the "
+           "gas (see\n                  // kinematicCloudProperties)\n    {\n        type wall;"
+           "\n        faces\n        (\n";
+  else
+    out << "    frontAndBack  // the pseudo-2-D slab: no front or back walls (see "
+           "kinematicCloudProperties)\n    {\n        type empty;\n        faces\n        (\n";
   for (std::size_t i = 0; i < last; ++i) {
     out << "            (" << v(i, 0, 0) << ' ' << v(i, 1, 0) << ' ' << v(i + 1, 1, 0) << ' '
         << v(i + 1, 0, 0) << ")\n";
@@ -284,7 +292,11 @@ void write_pressure(std::ostream& out, const Mesh& m) {
          "$internalField;\n    }\n";
   out << "    outlet\n    {\n        type            fixedValue;\n        value           "
          "$internalField;\n    }\n";
-  out << "    frontAndBack\n    {\n        type            empty;\n    }\n}\n";
+  if (m.thick)
+    out << "    frontAndBack\n    {\n        type            fixedFluxPressure;\n"
+           "        value           $internalField;\n    }\n}\n";
+  else
+    out << "    frontAndBack\n    {\n        type            empty;\n    }\n}\n";
 }
 
 void write_velocity(std::ostream& out, const Settings& s, const Mesh& m) {
@@ -311,17 +323,21 @@ void write_velocity(std::ostream& out, const Settings& s, const Mesh& m) {
   out << "    outlet\n    {\n        type            pressureInletOutletVelocity;\n"
       << "        phi             phi.air;\n        inletValue      uniform (0 0 0);\n"
       << "        value           uniform (0 0 0);\n    }\n";
-  out << "    frontAndBack\n    {\n        type            empty;\n    }\n}\n";
+  // fluidbed's gas is averaged through the depth (eq 23): no shear at the front and back.
+  out << "    frontAndBack\n    {\n        type            " << (m.thick ? "slip" : "empty")
+      << ";\n    }\n}\n";
 }
 
-void write_positions(std::ostream& out, const Settings& s, const Particles& p) {
+void write_positions(std::ostream& out, const Settings& s, const Mesh& m, const Particles& p) {
   out << foam_header("vectorField", "constant", "kinematicCloudPositions");
   out << "// The scene's start (particles.placement = \"" << option_name(s.particles.placement)
-      << "\"), one sphere per line, x y z (m); z is the slab's mid-plane.\n\n";
+      << "\"), one sphere per line, x y z (m); z is "
+      << (m.thick ? "the depth in the slab" : "the slab's mid-plane") << ".\n\n";
   out << p.size() << "\n(\n";
-  const std::string z = num(0.5 * s.domain.thickness);
+  const std::string mid = num(0.5 * s.domain.thickness);
   for (std::size_t i = 0; i < p.size(); ++i)
-    out << '(' << num(p.x[i]) << ' ' << num(p.y[i]) << ' ' << z << ")\n";
+    out << '(' << num(p.x[i]) << ' ' << num(p.y[i]) << ' ' << (m.thick ? num(p.z[i]) : mid)
+        << ")\n";
   out << ")\n";
 }
 
@@ -502,10 +518,21 @@ std::vector<std::string> notes_for(const Settings& s, const DpmCollisionLaw& law
   n.push_back(
       "gas: DPMFoam's PIMPLE, Euler in time, laminar (fluidbed: SIMPLE, Crank-Nicolson, "
       "upwind; upwind here too)");
-  n.push_back(
-      "front and back: \"empty\" patches, one cell deep: the gas is 2-D with cells dx dy "
-      "thickness (eq 23) and DPMFoam keeps the spheres on the mid-plane, as fluidbed; "
-      "slip walls instead would make the gas a 3-D layer and let spheres touch them");
+  if (m.thick)
+    n.push_back(
+        "front and back: walls for the spheres (the same spring-slider-dashpot as the side "
+        "walls) and slip for the gas, one cell deep: the gas is 2-D with cells dx dy "
+        "thickness (eq 23), as fluidbed's, while the spheres move through the slab's depth");
+  else
+    n.push_back(
+        "front and back: \"empty\" patches, one cell deep: the gas is 2-D with cells dx dy "
+        "thickness (eq 23) and DPMFoam keeps the spheres on the mid-plane, as fluidbed; "
+        "slip walls instead would make the gas a 3-D layer and let spheres touch them");
+  if (s.contact.rolling_friction > 0.0)
+    n.push_back("rolling resistance: DPMFoam's collision models have none, so the scene's "
+                "contact.rolling_friction = " +
+                num(s.contact.rolling_friction) + " is left out");
+
   if (!m.uniform_cells)
     n.push_back(
         "the jet slot's edges are not on the scene's grid lines: the cells beside and "
@@ -514,7 +541,8 @@ std::vector<std::string> notes_for(const Settings& s, const DpmCollisionLaw& law
     n.push_back("a sphere reaching the open top leaves the case (fluidbed stops the run)");
   bool moving = false;
   for (std::size_t i = 0; i < p.size(); ++i)
-    moving = moving || p.vx[i] != 0.0 || p.vy[i] != 0.0 || p.w[i] != 0.0;
+    moving = moving || p.vx[i] != 0.0 || p.vy[i] != 0.0 || p.w[i] != 0.0 ||
+             (m.thick && (p.vz[i] != 0.0 || p.wx[i] != 0.0 || p.wy[i] != 0.0));
   if (moving)
     n.push_back(
         "the start's velocities and spins are left out: DPMFoam's manual injection "
@@ -542,10 +570,9 @@ OpenfoamCase write_openfoam_case(const Settings& s, const std::string& dir,
   if (s.contact.wall_friction)
     throw InputError("contact.wall_friction: the DPMFoam case's walls take the particles' "
                      "friction, so walls with their own are not exported (leave it unset)");
-  if (slab_has_depth(s.domain, s.particles.diameter))
-    throw InputError("domain.thickness: the DPMFoam case keeps its spheres on the mid-plane "
-                     "(empty front and back patches), so a thick slab, whose particles move in "
-                     "3D, is not exported (export it --to liggghts)");
+  if (s.contact.law == ContactLaw::HertzMindlin)
+    throw InputError("contact.law = \"hertz_mindlin\": the DPMFoam case is written for the "
+                     "linear spring only (export a scene with contact.law = \"linear\")");
   if (s.inlet.plenum_height > 0.0)
     throw InputError("inlet.plenum_height: the DPMFoam case's mesh starts at the particles' "
                      "floor, so a plenum under it is not exported (set it to 0)");
@@ -577,7 +604,7 @@ OpenfoamCase write_openfoam_case(const Settings& s, const std::string& dir,
   add("constant/transportProperties", [&](std::ostream& o) { write_transport(o, s); });
   add("constant/turbulenceProperties.air", [&](std::ostream& o) { write_turbulence(o); });
   add("constant/kinematicCloudProperties", [&](std::ostream& o) { write_cloud(o, s, law, notes); });
-  add("constant/kinematicCloudPositions", [&](std::ostream& o) { write_positions(o, s, p); });
+  add("constant/kinematicCloudPositions", [&](std::ostream& o) { write_positions(o, s, m, p); });
   add("0/p", [&](std::ostream& o) { write_pressure(o, m); });
   add("0/U.air", [&](std::ostream& o) { write_velocity(o, s, m); });
   add("Allrun", [&](std::ostream& o) { write_allrun(o, s, notes); });

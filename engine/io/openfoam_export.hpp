@@ -14,11 +14,13 @@
 //   DIR/constant/kinematicCloudPositions   one line per sphere (x y z, m)
 //   DIR/0/{U.air,p}                     the gas at rest, the inlet, the outlet
 //
-// The slab: one cell through the thickness, front and back patches "empty". OpenFOAM then
-// solves the gas in 2-D (cell volume dx dy thickness, as eq 23) and keeps the parcels on the
-// mid-plane (it zeroes their velocity along the empty direction), which is fluidbed's planar
-// model; slip walls would leave a 3-D gas one cell thick and let spheres touch the front and back
-// walls through round-off, a contact fluidbed never has.
+// The slab: one cell through the thickness. A monolayer's front and back patches are "empty":
+// OpenFOAM then solves the gas in 2-D (cell volume dx dy thickness, as eq 23) and keeps the
+// parcels on the mid-plane (it zeroes their velocity along the empty direction), which is
+// fluidbed's planar model. A thick slab (slab_has_depth) is written with its spheres' depths and
+// the front and back as wall patches: walls for the spheres (the side walls' spring-slider-
+// dashpot), slip for the gas, so that the gas is still 2-D through the depth as fluidbed's is.
+// A scene with the Hertz-Mindlin law is refused (the case is written for the linear spring).
 //
 // What differs from fluidbed, as exactly as the formulas allow (said again in the case's header
 // comment and in the notes, with the numbers of the scene): see io/dpm_collision_law.hpp and

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "../test_support.hpp"
@@ -218,6 +219,69 @@ TEST(OpenfoamExport, CaseHoldsTheScenesNumbers) {
   EXPECT_NE(cloud.find("WenYuDrag, the closest"), std::string::npos);
 }
 
+// A thick slab (3 spheres deep): each sphere keeps its depth, the front and back are walls for
+// the spheres and slip for the gas (still one cell deep), and the notes say so; rolling
+// resistance, which DPMFoam lacks, is named in the notes; the Hertz-Mindlin law is refused.
+TEST(OpenfoamExport, ThickSlabKeepsEachSpheresDepthBetweenWalls) {
+  const Settings s = scene("packing.toml", {"domain.thickness=0.012", "particles.count=300",
+                                            "contact.rolling_friction=0.025"});
+  const fs::path dir = temp_dir("openfoam-thick");
+  const OpenfoamCase c = write_openfoam_case(s, dir.string());
+  const std::string mesh = read_file(dir / "system/blockMeshDict");
+  EXPECT_NE(mesh.find("(15 45 1)"), std::string::npos);  // still one cell deep
+  EXPECT_EQ(mesh.find("type empty;"), std::string::npos);
+  const auto front = mesh.find("    frontAndBack");
+  ASSERT_NE(front, std::string::npos);
+  EXPECT_EQ(mesh.find("type wall;", front), mesh.find("type", front));
+  const std::string u = read_file(dir / "0/U.air"), p = read_file(dir / "0/p");
+  EXPECT_NE(u.find("frontAndBack\n    {\n        type            slip;"), std::string::npos) << u;
+  EXPECT_NE(p.find("frontAndBack\n    {\n        type            fixedFluxPressure;"),
+            std::string::npos)
+      << p;
+
+  const std::vector<Point> pts = read_points(dir / "constant/kinematicCloudPositions");
+  const Particles start = place_particles(s);
+  ASSERT_EQ(pts.size(), start.size());
+  std::set<double> depths;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    ASSERT_EQ(pts[i].x, start.x[i]) << i;
+    ASSERT_EQ(pts[i].y, start.y[i]) << i;
+    ASSERT_EQ(pts[i].z, start.z[i]) << i;
+    EXPECT_GE(pts[i].z, 0.002 - 1e-15) << i;
+    EXPECT_LE(pts[i].z, 0.010 + 1e-15) << i;
+    depths.insert(pts[i].z);
+  }
+  EXPECT_GE(depths.size(), 3u);  // the lattice fills the depth
+  auto noted = [&c](const std::string& what) {
+    return std::any_of(c.notes.begin(), c.notes.end(),
+                       [&](const std::string& n) { return n.rfind(what, 0) == 0; });
+  };
+  EXPECT_TRUE(noted("front and back: walls for the spheres"));
+  EXPECT_TRUE(noted("rolling resistance: DPMFoam's collision models have none"));
+  EXPECT_NE(read_file(dir / "constant/kinematicCloudProperties").find("contact.rolling_friction = 0.025"),
+            std::string::npos);
+
+  // The monolayer's case keeps its empty patches and says nothing of rolling resistance.
+  const OpenfoamCase flat =
+      write_openfoam_case(scene("packing.toml", {"particles.count=300"}), (dir / "flat").string());
+  EXPECT_NE(read_file(dir / "flat/system/blockMeshDict").find("type empty;"), std::string::npos);
+  EXPECT_FALSE(std::any_of(flat.notes.begin(), flat.notes.end(), [](const std::string& n) {
+    return n.rfind("rolling resistance", 0) == 0;
+  }));
+
+  const Settings hertz = scene(
+      "packing.toml", {"domain.thickness=0.012", "particles.count=300", "contact.law=hertz_mindlin",
+                       "contact.youngs_modulus=1e7", "contact.poisson_ratio=0.3",
+                       "contact.restitution=0.9"});
+  try {
+    write_openfoam_case(hertz, (dir / "hertz").string());
+    ADD_FAILURE() << "a Hertz-Mindlin scene was exported";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("contact.law"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "hertz"));
+}
+
 // The normal spring is ours exactly (for pairs and walls, by OpenFOAM's own formulas); the
 // dashpot's restitution is ours at the reference speed.
 TEST(OpenfoamExport, CollisionLawReproducesTheSpringAndTheRestitution) {
@@ -366,4 +430,43 @@ TEST(OpenfoamRun, JettedBedRunsSerial) {
   EXPECT_GT(alpha, 0.9);
   EXPECT_LE(alpha, 1.0);
   EXPECT_NEAR(u * alpha, 42.0, 1e-6 * 42.0);
+}
+
+// The thick slab's case (300 spheres 3 deep, gas at rest) runs 100 steps on 2 MPI processes:
+// every sphere is still there, each has fallen g t^2 / 2 within 5 % (as the monolayer's above)
+// or rests on the floor, and each keeps its depth: the front and back walls hold the spheres
+// that touch them and push none.
+TEST(OpenfoamRun, ThickSlabRunsInParallel) {
+  REQUIRE_OPENFOAM();
+  const Settings s =
+      scene("packing.toml", {"domain.thickness=0.012", "particles.count=300", "time.end=0.0015"});
+  const fs::path dir = temp_dir("openfoam-run-thick");
+  write_openfoam_case(s, dir.string());
+  ASSERT_EQ(run_allrun(dir, ""), 0) << read_file(dir / "allrun.out");
+  const std::string log = read_file(dir / "log.DPMFoam");
+  EXPECT_NE(log.find("\nEnd"), std::string::npos)
+      << log.substr(log.size() > 3000 ? log.size() - 3000 : 0);
+  EXPECT_EQ(log.find("FOAM FATAL"), std::string::npos);
+  EXPECT_EQ(last_parcel_count(log), 300);
+  const fs::path t = last_time(dir);
+  ASSERT_FALSE(t.empty());
+  EXPECT_NEAR(std::stod(t.filename().string()), 0.0015, 1e-12);
+  const std::vector<Point> end = read_points(t / "lagrangian/kinematicCloud/positions");
+  ASSERT_EQ(end.size(), 300u);
+  const Particles start = place_particles(s);
+  const double time = 100 * 1.5e-5, fall = 0.5 * 9.81 * time * time, r = 0.002;
+  int matched = 0;
+  for (const Point& q : end) {
+    for (std::size_t i = 0; i < start.size(); ++i) {
+      if (std::fabs(start.x[i] - q.x) > 2e-6 || std::fabs(start.z[i] - q.z) > 2e-6 ||
+          start.y[i] - q.y < -1e-6 || start.y[i] - q.y > 1e-4)
+        continue;
+      ++matched;
+      const bool floor = start.y[i] == r;
+      EXPECT_NEAR(start.y[i] - q.y, floor ? 0.0 : fall, floor ? 1e-6 : 0.05 * fall) << i;
+      EXPECT_NEAR(q.z, start.z[i], 1e-6) << i;
+      break;
+    }
+  }
+  EXPECT_EQ(matched, 300);
 }

@@ -11,6 +11,7 @@
 
 #include "../test_support.hpp"
 #include "core/errors.hpp"
+#include "core/text_format.hpp"
 #include "dem/dem_solver.hpp"
 #include "io/openfoam_export.hpp"
 #include "scene/scene_loader.hpp"
@@ -314,16 +315,33 @@ TEST(ThickSlab, StateFileRestartsTheSameBits) {
   EXPECT_EQ(resumed.state_hash(), straight.state_hash());
 }
 
-TEST(ThickSlab, OpenfoamExportRefusesAThickSlabByName) {
-  // DPMFoam's case keeps the spheres on the mid-plane: a thick slab is refused in one line that
-  // names the setting, before anything is written.
-  const Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/van_wachem_2001.toml");
+TEST(ThickSlab, VanWachemsBedExportsToOpenfoamWithEachSpheresDepth) {
+  // DPMFoam's mesh starts at the particles' floor: van Wachem's bed as shipped (a plenum under
+  // the floor) is refused in one line that names the setting, before anything is written.
+  const std::string file = std::string(FLUIDBED_ASSET_DIR) + "/scenes/van_wachem_2001.toml";
   const auto dir = temp_dir("thick-openfoam");
   try {
-    write_openfoam_case(s, (dir / "case").string(), {});
-    FAIL() << "a thick slab was exported";
+    write_openfoam_case(load_scene(file), (dir / "case").string(), {});
+    FAIL() << "a scene with a plenum was exported";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("domain.thickness"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("inlet.plenum_height"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "case"));
+  // Without it (the gas entering at the floor), the 5-sphere-deep bed is written with depth.
+  const Settings s = load_scene(file, {"inlet.plenum_height=0", "gas.cells_y=100",
+                                       "particles.placement=lattice", "diagnostics.probes=[]"});
+  const OpenfoamCase c = write_openfoam_case(s, (dir / "case").string(), {});
+  EXPECT_EQ(c.particles, 17562u);
+  const std::string mesh = read_file(dir / "case/system/blockMeshDict");
+  EXPECT_NE(mesh.find("(18 100 1)"), std::string::npos);
+  EXPECT_EQ(mesh.find("type empty;"), std::string::npos);
+  const std::string positions = read_file(dir / "case/constant/kinematicCloudPositions");
+  const Particles start = place_particles(s);
+  std::size_t off_mid = 0;
+  for (std::size_t i = 0; i < start.size(); ++i) off_mid += start.z[i] != 0.004;
+  EXPECT_GT(off_mid, start.size() / 2);  // the lattice fills the depth, and the case has it
+  std::ostringstream first;
+  first << "(" << shortest_number(start.x[0]) << ' ' << shortest_number(start.y[0]) << ' '
+        << shortest_number(start.z[0]) << ")";
+  EXPECT_NE(positions.find(first.str()), std::string::npos) << first.str();
 }
