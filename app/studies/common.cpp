@@ -448,7 +448,7 @@ Settings bed_scene(Size size, const std::vector<std::string>& overrides) {
   if (size == Size::Tiny)
     all = {"domain.width=0.06",        "domain.height=0.3",      "particles.count=300",
            "particles.fill_height=0.12", "particles.packing_time=0.3", "gas.cells_x=6",
-           "gas.cells_y=15"};
+           "gas.cells_y=15",           "diagnostics.probes=[[0.03, 0.10]]"};  // its centre line
   all.insert(all.end(), overrides.begin(), overrides.end());
   return load_scene(render::asset_dir() + "/scenes/xu_yu_1997.toml", all);
 }

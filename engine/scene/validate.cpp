@@ -186,8 +186,8 @@ void validate(const Settings& s) {
       char domain[96];
       std::snprintf(domain, sizeof domain, "x in [0, %g] m, y in [%g, %g] m", d.width, bottom,
                     d.height);
-      refuse("diagnostics.probes",
-             std::string(where) + " outside the gas domain (" + domain + ")");
+      refuse("diagnostics.probes", std::string(where) + " outside the gas domain (" + domain +
+                                       "): move it, or set diagnostics.probes = [] for none");
     }
   }
   if (s.inlet.distributor_resistance > 0.0) {

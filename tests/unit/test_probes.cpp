@@ -154,4 +154,16 @@ TEST(Probes, RefusedInOneLineNamingTheProbe) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("probe 2 at (0.16, 0.1) m outside the gas domain"), std::string::npos)
       << r.err;
+  // The paper's scene has a probe of its own (0.075, 0.10): a bed made narrower than that is
+  // told how to move or drop it.
+  const CommandResult narrow = run_fluidbed(
+      "check " + std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml --set domain.width=0.05 --set gas.cells_x=5",
+      "probe-narrow");
+  EXPECT_EQ(narrow.status, 2) << narrow.err;
+  EXPECT_EQ(std::count(narrow.err.begin(), narrow.err.end(), '\n'), 1) << narrow.err;
+  EXPECT_NE(narrow.err.find("probe 1 at (0.075, 0.1) m outside the gas domain (x in [0, 0.05] m"),
+            std::string::npos)
+      << narrow.err;
+  EXPECT_NE(narrow.err.find("set diagnostics.probes = [] for none"), std::string::npos)
+      << narrow.err;
 }
