@@ -26,7 +26,18 @@ struct PaperRuns {
   std::vector<study::Report> studies;
   double paper_time = 0.0, uniform_time = 0.0, ideal_time = 0.0;  // s simulated
   double averaging = 0.0;                                         // s, averaging start of the runs
+  // The second bed (van Wachem et al. 2001, its scene as shipped): one run per packing, none
+  // with --quick.
+  std::vector<std::uint64_t> second_bed_seeds;
+  std::vector<nlohmann::json> second_bed;
 };
+
+// The second bed's section of report.md: van Wachem's bed over the packings `seeds` (each
+// run's summary in `runs`), each figure per packing and as mean +- standard deviation beside the
+// experiment's (Lethe's reference files), and whether the experiment's value lies within two
+// standard deviations. No runs: the section says that --quick leaves the bed out and how to run it.
+std::string second_bed_section(const std::vector<nlohmann::json>& runs,
+                               const std::vector<std::uint64_t>& seeds);
 
 // report.md: the table against the paper, the figures, the ideal case, the studies and the
 // settings; `total_wall` the report's wall seconds.

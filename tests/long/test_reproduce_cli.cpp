@@ -59,6 +59,7 @@ TEST(ReproduceCli, WritesEveryFigureAndTheReportAfterAnInterrupt) {
         "uniform distributor: mean rise velocity", "start-up peak", "max overlap ratio at start-up",
         "ideal case", "cost of 1 s", "wall time of this report", "particles.count=300",
         "## Studies", "Integrators and time step", "from 1 packing (lattice seed",
-        "`--quick` runs one"})
+        "`--quick` runs one", "## The second bed: van Wachem et al. (2001)",
+        "Not run: `--quick` leaves it out."})
     EXPECT_NE(report.find(row), std::string::npos) << row;
 }
