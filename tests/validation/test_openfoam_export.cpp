@@ -137,6 +137,25 @@ int run_allrun(const fs::path& dir, const std::string& arg) {
   return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
 }
 
+// Runs a written case on 2 MPI processes (Allrun) to `end_time` and returns the parcels' last
+// positions, after checking that the run ended cleanly with 300 parcels and was decomposed.
+std::vector<Point> run_in_parallel_to_end(const fs::path& dir, double end_time) {
+  EXPECT_EQ(run_allrun(dir, ""), 0) << read_file(dir / "allrun.out");
+  const std::string log = read_file(dir / "log.DPMFoam");
+  EXPECT_NE(log.find("\nEnd"), std::string::npos)
+      << log.substr(log.size() > 3000 ? log.size() - 3000 : 0);
+  EXPECT_EQ(log.find("FOAM FATAL"), std::string::npos);
+  EXPECT_EQ(last_parcel_count(log), 300);
+  EXPECT_TRUE(fs::exists(dir / "processor1"));
+  const fs::path t = last_time(dir);
+  if (t.empty()) {
+    ADD_FAILURE() << "no time written in " << dir;
+    return {};
+  }
+  EXPECT_NEAR(std::stod(t.filename().string()), end_time, 1e-12);
+  return read_points(t / "lagrangian/kinematicCloud/positions");
+}
+
 }  // namespace
 
 TEST(OpenfoamExport, CaseHoldsTheScenesNumbers) {
@@ -378,17 +397,7 @@ TEST(OpenfoamRun, ExportedPackingRunsInParallel) {
   const Settings s = scene("packing.toml", {"particles.count=300", "time.end=0.0015"});
   const fs::path dir = temp_dir("openfoam-run-packing");
   write_openfoam_case(s, dir.string());
-  ASSERT_EQ(run_allrun(dir, ""), 0) << read_file(dir / "allrun.out");
-  const std::string log = read_file(dir / "log.DPMFoam");
-  EXPECT_NE(log.find("\nEnd"), std::string::npos)
-      << log.substr(log.size() > 3000 ? log.size() - 3000 : 0);
-  EXPECT_EQ(log.find("FOAM FATAL"), std::string::npos);
-  EXPECT_EQ(last_parcel_count(log), 300);
-  EXPECT_TRUE(fs::exists(dir / "processor1"));
-  const fs::path t = last_time(dir);
-  ASSERT_FALSE(t.empty());
-  EXPECT_NEAR(std::stod(t.filename().string()), 0.0015, 1e-12);
-  const std::vector<Point> end = read_points(t / "lagrangian/kinematicCloud/positions");
+  const std::vector<Point> end = run_in_parallel_to_end(dir, 0.0015);
   ASSERT_EQ(end.size(), 300u);
   const Particles start = place_particles(s);
   const double time = 100 * 1.5e-5, fall = 0.5 * 9.81 * time * time, r = 0.002;
@@ -442,16 +451,7 @@ TEST(OpenfoamRun, ThickSlabRunsInParallel) {
       scene("packing.toml", {"domain.thickness=0.012", "particles.count=300", "time.end=0.0015"});
   const fs::path dir = temp_dir("openfoam-run-thick");
   write_openfoam_case(s, dir.string());
-  ASSERT_EQ(run_allrun(dir, ""), 0) << read_file(dir / "allrun.out");
-  const std::string log = read_file(dir / "log.DPMFoam");
-  EXPECT_NE(log.find("\nEnd"), std::string::npos)
-      << log.substr(log.size() > 3000 ? log.size() - 3000 : 0);
-  EXPECT_EQ(log.find("FOAM FATAL"), std::string::npos);
-  EXPECT_EQ(last_parcel_count(log), 300);
-  const fs::path t = last_time(dir);
-  ASSERT_FALSE(t.empty());
-  EXPECT_NEAR(std::stod(t.filename().string()), 0.0015, 1e-12);
-  const std::vector<Point> end = read_points(t / "lagrangian/kinematicCloud/positions");
+  const std::vector<Point> end = run_in_parallel_to_end(dir, 0.0015);
   ASSERT_EQ(end.size(), 300u);
   const Particles start = place_particles(s);
   const double time = 100 * 1.5e-5, fall = 0.5 * 9.81 * time * time, r = 0.002;
