@@ -138,7 +138,10 @@ double terminal_velocity(const Settings& scene) {
   return 0.5 * (lo + hi);
 }
 
-std::vector<double> default_sweep_velocities(const Settings& scene) {
+namespace {
+
+// The paper's list (m/s, increasing) for `scene`'s particles and gas (default_sweep_velocities).
+std::vector<double> scaled_for(const Settings& scene, const std::vector<double>& paper_list) {
   auto umf_of = [](const Settings& s) {
     return wen_yu_umf(s.particles.diameter, s.particles.density, s.gas.density, s.gas.viscosity,
                       s.physics.gravity);
@@ -147,11 +150,25 @@ std::vector<double> default_sweep_velocities(const Settings& scene) {
   const double scale = umf > 0.0 && paper > 0.0 ? umf / paper : 1.0;
   const double cap = 0.8 * terminal_velocity(scene);
   std::vector<double> v;
-  for (double u : default_sweep_velocities()) {
+  for (double u : paper_list) {
     const double x = std::round(100.0 * u * scale) / 100.0;
     if (x > 0.0 && x < cap && (v.empty() || x > v.back())) v.push_back(x);
   }
   return v;
+}
+
+}  // namespace
+
+std::vector<double> default_sweep_velocities(const Settings& scene) {
+  return scaled_for(scene, default_sweep_velocities());
+}
+
+std::vector<double> decreasing_branch_velocities() {
+  return {0.5, 0.9, 1.4, 1.7, 2.0, 2.3, 2.6, 3.0};
+}
+
+std::vector<double> decreasing_branch_velocities(const Settings& scene) {
+  return scaled_for(scene, decreasing_branch_velocities());
 }
 
 namespace {
@@ -294,7 +311,16 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   };
   // The chain first, so that one worker walks it while the others share the increasing runs.
   std::vector<std::function<void()>> tasks = {down_chain};
-  for (std::size_t k = 0; k + 1 < n; ++k) tasks.push_back([&, k] { run_up(k); });
+  if (o.decreasing_only) {
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      result.up[k].branch = "up";
+      result.up[k].u = o.velocities[k];
+      result.up[k].error = "not run: decreasing branch only";
+      state[k] = 2;  // claimed: the chain starts at the top run
+    }
+  } else {
+    for (std::size_t k = 0; k + 1 < n; ++k) tasks.push_back([&, k] { run_up(k); });
+  }
   RunPool(o.threads).run(tasks);
   for (const auto* branch : {&result.up, &result.down})
     for (const auto& p : *branch) result.interrupted = result.interrupted || p.interrupted;
@@ -335,6 +361,7 @@ nlohmann::json sweep_identity(const Settings& scene, const SweepOptions& options
           {"velocities_m_s", velocities},
           {"run_time_s", options.run_time},
           {"averaging_start_s", options.averaging_start},
+          {"decreasing_only", options.decreasing_only},
           {"command", options.command}};
 }
 
@@ -349,10 +376,12 @@ void check_sweep_resume(const Settings& scene, const SweepOptions& options) {
   if (!scene_change.empty())
     throw InputError(head + "the scene is not the one the sweep started with (" + scene_change +
                      ")");
-  for (const char* key : {"velocities_m_s", "run_time_s", "averaging_start_s"})
-    if (identity[key] != was.value(key, nlohmann::json()))
+  nlohmann::json before = was;
+  if (!before.contains("decreasing_only")) before["decreasing_only"] = false;  // older folders
+  for (const char* key : {"velocities_m_s", "run_time_s", "averaging_start_s", "decreasing_only"})
+    if (identity[key] != before.value(key, nlohmann::json()))
       throw InputError(head + "the sweep's " + key + " " + identity[key].dump() + " differ from " +
-                       was.value(key, nlohmann::json()).dump());
+                       before.value(key, nlohmann::json()).dump());
 }
 
 nlohmann::json read_sweep_identity(const std::string& out_dir) {

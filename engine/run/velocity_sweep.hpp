@@ -40,6 +40,9 @@ struct SweepOptions {
   std::function<bool()> stop;
   double checkpoint_interval = 60.0;  // wall s between a running run's checkpoints (<= 0: only at stop)
   nlohmann::json command;             // how the caller started the sweep (kept in sweep.json)
+  // Only what U_mf needs: the highest velocity from the scene's start, then the decreasing chain
+  // from it (no hysteresis loop; the runs below the top of `up` are not run). Half the runs.
+  bool decreasing_only = false;
 };
 
 struct SweepPoint {
@@ -80,6 +83,12 @@ std::vector<double> default_sweep_velocities();
 // particles out of the top; for spheres u_t is 8 or more times Wen-Yu's U_mf, so the list's top,
 // 1.8 U_mf, stays below it and the cap only guards).
 std::vector<double> default_sweep_velocities(const Settings& scene);
+// The 8 velocities a decreasing branch alone is swept through for U_mf (SweepOptions::
+// decreasing_only; the teaching study and the viewer's U_mf), m/s: 0.5, 0.9 (half the paper's
+// U_mf of 1.8, the fixed bed), then 1.4 to 3.0 (U_mf near the middle, the plateau from 2.0); and
+// the same list for `scene`, scaled as default_sweep_velocities(scene) is.
+std::vector<double> decreasing_branch_velocities();
+std::vector<double> decreasing_branch_velocities(const Settings& scene);
 // A single sphere's terminal velocity in the scene's gas (m/s): its weight less buoyancy equals
 // the Di Felice drag at porosity 1, C_d = (0.63 + 4.8 / sqrt(Re))^2 (model.md).
 double terminal_velocity(const Settings& scene);

@@ -93,6 +93,36 @@ TEST(Sweep, BranchOrderAndStateHandOver) {
   for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(r1.down[k].end_hash, r.down[k].end_hash);
 }
 
+TEST(Sweep, DecreasingOnlyRunsTheTopThenTheFullSweepsChain) {
+  // What U_mf needs alone (SweepOptions::decreasing_only): the top velocity from the scene's
+  // start, then the chain down from it, the same runs to the bit as the full sweep's; the
+  // increasing runs below the top are not run, and say so.
+  const Settings s = small_sweep_bed();
+  SweepOptions o = short_sweep({0.5, 1.0, 1.5}, "sweep_full");
+  const SweepResult full = run_sweep(s, o);
+  o.decreasing_only = true;
+  o.out_dir = fluidbed::testing::temp_dir("sweep_down").string();
+  const SweepResult down = run_sweep(s, o);
+  ASSERT_EQ(down.up.size(), 3u);
+  ASSERT_TRUE(down.up[2].ok) << down.up[2].error;
+  EXPECT_EQ(down.up[2].end_hash, full.up[2].end_hash);
+  EXPECT_EQ(down.up[2].dp_mean, full.up[2].dp_mean);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_FALSE(down.up[k].ok);
+    EXPECT_EQ(down.up[k].error, "not run: decreasing branch only");
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(o.out_dir) / "runs" /
+                                         (k == 0 ? "up-0.500" : "up-1.000")));
+    ASSERT_TRUE(down.down[k].ok) << down.down[k].error;
+    EXPECT_EQ(down.down[k].start_hash, full.down[k].start_hash);
+    EXPECT_EQ(down.down[k].end_hash, full.down[k].end_hash);
+    EXPECT_EQ(down.down[k].dp_mean, full.down[k].dp_mean);
+  }
+  // A sweep of one kind is not resumed as the other.
+  o.resume = true;
+  o.decreasing_only = false;
+  EXPECT_THROW(check_sweep_resume(s, o), InputError);
+}
+
 TEST(Sweep, VelocitiesThatWouldShareARunFolderAreRefused) {
   // Runs are kept in runs/up-1.800 and the like: 1.8001 and 1.8004 m/s would share a folder.
   Settings s = load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/xu_yu_1997.toml",
