@@ -22,6 +22,7 @@
 #include "run/checkpoint.hpp"
 #include "run/ensemble.hpp"
 #include "run/run_folder.hpp"
+#include "run/velocity_sweep.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/simulation.hpp"
 #include "studies/common.hpp"
@@ -58,7 +59,8 @@ const std::vector<Info>& all_studies() {
       {"teaching",
        "Teaching scene: the cheap settings' bed against the paper-fidelity bed, within the "
        "bounds the teaching scene was chosen by",
-       "about 4 min (9 runs of 6 s of the paper's bed)", "about 10 s", teaching_study, true,
+       "about 15 min (10 runs of 6 s of the paper's bed, each then swept down through 8 velocities)",
+       "about 15 s", teaching_study, true,
        teaching_bounds()},
       {"sensitivity",
        "Sensitivity of a scene (--scene, --vary): which settings move its figures beyond their "
@@ -390,6 +392,66 @@ PointRun run_point(const Options& o, const Settings& s, double until, bool bubbl
   std::error_code ec;
   fs::remove_all(dir, ec);  // the point's record is kept: its run's folder is no longer needed
   return p;
+}
+
+double DecreasingBranch::dp_at(double U) const {
+  for (std::size_t k = 0; k < u.size(); ++k)
+    if (std::fabs(u[k] - U) < 5e-4) return dp[k];
+  return NAN;
+}
+
+DecreasingBranch decreasing_branch(const Options& o, const Settings& s,
+                                   const std::vector<double>& velocities, double run_time,
+                                   double averaging) {
+  nlohmann::json what = run_definition("decreasing_branch", s, run_time);
+  std::vector<double> sorted = velocities;
+  std::sort(sorted.begin(), sorted.end());
+  what["velocities"] = sorted;
+  what["averaging_start"] = averaging;
+  const fs::path dir = points_dir(o) / point_key(what);
+  const nlohmann::json j = stored_point(o, what, true, [&] {
+    SweepOptions so;
+    so.velocities = sorted;
+    so.run_time = run_time;
+    so.averaging_start = averaging;
+    so.threads = 1;
+    so.decreasing_only = true;
+    so.out_dir = dir.string();
+    so.resume = o.resume && fs::exists(dir / "sweep.json");
+    so.stop = o.stop;
+    const SweepResult r = run_sweep(s, so);
+    if (r.interrupted) throw Interrupted();
+    nlohmann::json out = {{"ok", r.umf.ok}, {"umf", r.umf.ok ? r.umf.umf : 0.0},
+                          {"wall", r.wall_time}, {"u", nlohmann::json::array()},
+                          {"dp", nlohmann::json::array()}};
+    std::string why = r.umf.ok ? "" : "no U_mf: " + r.umf.why;
+    std::vector<SweepPoint> branch = r.down;  // with the chain's top, the highest finished run
+    for (std::size_t k = r.up.size(); k-- > 0;)
+      if (r.up[k].ok) {
+        branch.push_back(r.up[k]);
+        break;
+      }
+    for (const SweepPoint& p : branch) {
+      if (p.ok) {
+        out["u"].push_back(p.u);
+        out["dp"].push_back(p.dp_mean);
+      } else if (why.empty() && !p.error.empty() && p.error.rfind("not run", 0) != 0) {
+        why = "a run failed: " + p.error;
+      }
+    }
+    out["why"] = why;
+    return out;
+  });
+  std::error_code ec;
+  fs::remove_all(dir, ec);  // the point's record is kept: its runs' folders are no longer needed
+  DecreasingBranch b;
+  b.ok = j.at("ok").get<bool>();
+  b.umf = b.ok ? j.at("umf").get<double>() : NAN;
+  b.why = j.at("why").get<std::string>();
+  b.wall = j.at("wall").get<double>();
+  b.u = j.at("u").get<std::vector<double>>();
+  b.dp = j.at("dp").get<std::vector<double>>();
+  return b;
 }
 
 std::string failure_kind(const std::string& m) {

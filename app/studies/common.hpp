@@ -209,6 +209,24 @@ double fixed_bed_force_ratio(const Options& o, const Settings& fixed, double U, 
 double fixed_bed_umf(const Options& o, const Settings& fixed, double lo, double hi, double time,
                      double& dp_lo);
 
+// A decreasing branch of the velocity sweep (run/velocity_sweep.hpp, decreasing_only) of `s` at
+// VELOCITIES (m/s, any order), RUN_TIME s per velocity averaged from AVERAGING s: U_mf of its fit
+// and dp of every run of the branch. A stored point (stored_point); the sweep runs in
+// DIR/points/KEY/, resumed with the study and removed once the point is kept. Runs one run at a
+// time (a point of a study runs beside the others).
+struct DecreasingBranch {
+  bool ok = false;            // the fit found U_mf
+  std::string why;            // when not: the fit's reason or a failed run's
+  double umf = NAN;           // m/s
+  std::vector<double> u, dp;  // the branch's finished runs (m/s, Pa), increasing velocity
+  double wall = 0.0;          // s
+  // dp of the run at velocity U (to 1 mm/s); NaN when it did not finish.
+  double dp_at(double U) const;
+};
+DecreasingBranch decreasing_branch(const Options& o, const Settings& s,
+                                   const std::vector<double>& velocities, double run_time,
+                                   double averaging);
+
 // The table behind study.csv: named columns, rows of text, one a point.
 class Table {
  public:

@@ -1,9 +1,10 @@
 // Study 9: the teaching scene's bounds. teaching.toml (what `fluidbed view` opens) was chosen as
 // the cheapest settings whose bed stays within bounds of the paper-fidelity bed (docs/studies.md):
 // mean dp within 5 %, the dominant dp frequency within 10 %, mean bed height within 5 %, max
-// overlap after start-up below 4 %, mean bubble diameter and eruption frequency within 15 %. This
-// study runs the paper-fidelity bed and the candidates of that choice from one packed bed, each
-// judged by those bounds; with `--seeds` the bounds are judged over packings (the ensemble's
+// overlap after start-up below 4 %, mean bubble diameter and eruption frequency within 15 %, and
+// (what its lessons teach) U_mf and the fixed bed's dp at half the paper's U_mf within 5 %, from
+// a decreasing branch of the sweep. This study runs the paper-fidelity bed and the candidates of
+// that choice from one packed bed, each judged by those bounds; with `--seeds` the bounds are judged over packings (the ensemble's
 // summary), since several differences are smaller than one run's spread.
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "render/asset_dir.hpp"
 #include "dem/contact_law.hpp"
 #include "run/packed_bed.hpp"
+#include "run/velocity_sweep.hpp"
 #include "scene/scene_loader.hpp"
 #include "studies/common.hpp"
 
@@ -21,21 +23,38 @@ namespace {
 
 // A candidate's knobs; its step and damping follow from its stiffness (candidate_scene).
 struct Candidate {
-  double kappa;      // N/m
-  int steps;         // particle steps per gas step
-  double tolerance;  // SIMPLE
-  double refresh;    // gas.preconditioner_refresh
+  double kappa;        // N/m
+  int steps;           // particle steps per gas step
+  double tolerance;    // SIMPLE
+  double refresh;      // gas.preconditioner_refresh
+  double per_contact;  // particle steps per pair contact duration: 6.3 the paper's, 3.15 half
 };
 
 // The rows of the teaching table (docs/studies.md), in its order; the tiny size keeps the chosen
 // one and the one whose frequency is off, so that its table shows both verdicts when the tiny bed
 // bubbles.
+// The steps per contact: half the paper's (3.15) keeps the bed at 2.8 m/s within its bounds, but
+// its defluidized bed jams (a U_mf 20 % low); the paper's 6.3 costs twice the particle steps.
 std::vector<Candidate> candidates(Size size) {
-  if (size == Size::Tiny) return {{10000.0, 2, 1e-3, 0.1}, {5000.0, 2, 1e-3, 0.1}};
-  return {{20000.0, 3, 1e-6, 0.002}, {20000.0, 3, 1e-3, 0.1},  {10000.0, 2, 1e-6, 0.002},
-          {10000.0, 2, 1e-3, 0.1},   {10000.0, 2, 1e-4, 0.03}, {5000.0, 1, 1e-3, 0.1},
-          {5000.0, 2, 1e-3, 0.1},    {5000.0, 2, 1e-6, 0.002}};
+  if (size == Size::Tiny) return {{5000.0, 3, 1e-3, 0.1, 6.3}, {10000.0, 2, 1e-3, 0.1, 3.15}};
+  return {{20000.0, 3, 1e-3, 0.1, 3.15}, {10000.0, 2, 1e-6, 0.002, 3.15},
+          {10000.0, 2, 1e-3, 0.1, 3.15}, {5000.0, 1, 1e-3, 0.1, 3.15},
+          {5000.0, 2, 1e-3, 0.1, 3.15},  {10000.0, 4, 1e-3, 0.1, 6.3},
+          {10000.0, 2, 1e-3, 0.1, 6.3},  {5000.0, 3, 1e-3, 0.1, 6.3},
+          {5000.0, 2, 1e-3, 0.1, 6.3}};
 }
+
+// The decreasing branch each point is swept down (U_mf and the fixed bed): 0.9 m/s is half the
+// paper's U_mf of 1.8 m/s, where the fixed-bed dp is compared; the tiny bed's is shorter.
+struct Branch {
+  std::vector<double> velocities;
+  double run_time, averaging;
+};
+Branch branch_protocol(Size size) {
+  if (size == Size::Tiny) return {{0.5, 0.9, 1.4, 2.0, 2.6}, 0.4, 0.2};
+  return {decreasing_branch_velocities(), 2.0, 1.0};  // as the viewer's U_mf (run/umf_estimate)
+}
+constexpr double kHalfUmf = 0.9;  // m/s: half the paper's U_mf (model.md)
 
 // What each run is measured by: a number of summary.json (in `object` when set) times `scale`,
 // and its difference from the paper-fidelity bed in % (the bounds' unit, so that the ensemble's
@@ -51,6 +70,9 @@ struct Figure {
 };
 // Eruptions are a frequency in Hz, not "per_s": the ensemble leaves columns named per_s out as
 // costs.
+// The decreasing branch's two figures have object "decreasing_branch" (from DecreasingBranch, not
+// summary.json).
+constexpr const char* kBranch = "decreasing_branch";
 constexpr Figure kFigures[] = {
     {"dp_mean_pa", "dp_mean_diff_pct", nullptr, "dp_mean_pa", 1.0, "mean dp (Pa)", "%.0f"},
     {"dp_frequency_hz", "dp_frequency_diff_pct", "dp_spectrum", "dominant_frequency_refined_hz",
@@ -63,6 +85,9 @@ constexpr Figure kFigures[] = {
      "mean D_e (m)", "%.4f"},
     {"eruption_frequency_hz", "eruption_frequency_diff_pct", "bubbles", "eruptions_per_s", 1.0,
      "eruptions (Hz)", "%.2f"},
+    {"umf_m_s", "umf_diff_pct", kBranch, "umf", 1.0, "U_mf (m/s)", "%.2f"},
+    {"dp_fixed_bed_pa", "dp_fixed_bed_diff_pct", kBranch, "dp_0.9", 1.0,
+     "fixed-bed dp at 0.9 m/s (Pa)", "%.0f"},
 };
 constexpr std::size_t kN = std::size(kFigures);
 
@@ -71,6 +96,7 @@ struct TeachingPoint {
   double kappa = NAN, dt = NAN, damping = NAN, tolerance = NAN, refresh = NAN;
   int steps = 1;
   PointRun run;
+  DecreasingBranch branch;
   double figure[kN] = {}, diff[kN] = {};  // NaN where the run has none
   double cost = NAN;                      // CPU s per simulated s
   Verdict verdict;
@@ -84,11 +110,11 @@ struct Teaching {
   int scene_point = -1;  // the point with teaching.toml's settings, if measured
 };
 
-// dt = the pair contact duration (reduced mass m / 2) / 3.15, to 4 significant digits as
+// dt = the pair contact duration (reduced mass m / 2) / per_contact, to 4 significant digits as
 // teaching.toml writes it: so the chosen candidate steps exactly as the scene does.
-double teaching_dt(double kappa) {
+double teaching_dt(double kappa, double per_contact) {
   const double tc_pair = contact_duration(kappa, 0.5 * paper_particle_mass());
-  return std::stod(fmt("%.4g", tc_pair / 3.15));
+  return std::stod(fmt("%.4g", tc_pair / per_contact));
 }
 
 // The damping of the paper's restitution at stiffness kappa.
@@ -146,12 +172,12 @@ Teaching measure(const Options& o) {
   add(fidelity, {});
   for (const Candidate& c : candidates(o.size)) {
     TeachingPoint p;
-    p.label = fmt("%g N/m", c.kappa) + ", " + std::to_string(c.steps) + " step" +
-              (c.steps > 1 ? "s" : "") + fmt(", tol %g", c.tolerance) +
-              fmt(", refresh %g", c.refresh);
+    p.label = fmt("%g N/m", c.kappa) + fmt(", dt t_c/%g", c.per_contact) + ", " +
+              std::to_string(c.steps) + " step" + (c.steps > 1 ? "s" : "") +
+              fmt(", tol %g", c.tolerance) + fmt(", refresh %g", c.refresh);
     add(p, {"contact.stiffness=" + exact(c.kappa),
             "contact.damping=" + exact(teaching_damping(paper, c.kappa)),
-            "time.dt=" + exact(teaching_dt(c.kappa)),
+            "time.dt=" + exact(teaching_dt(c.kappa, c.per_contact)),
             "coupling.particle_steps_per_gas_step=" + std::to_string(c.steps),
             "gas.tolerance=" + exact(c.tolerance),
             "gas.preconditioner_refresh=" + exact(c.refresh)});
@@ -164,6 +190,7 @@ Teaching measure(const Options& o) {
       m.scene_point = static_cast<int>(i);
   }
 
+  const Branch protocol = branch_protocol(o.size);
   m.pts = RunPool(o.workers).map<TeachingPoint>(pts.size(), [&](std::size_t i) {
     TeachingPoint p = pts[i];
     p.run = run_point(o, scenes[i], m.until, /*bubbles=*/true);
@@ -171,15 +198,25 @@ Teaching measure(const Options& o) {
       for (std::size_t k = 0; k < kN; ++k) {
         const Figure& f = kFigures[k];
         const auto& j = p.run.result.summary;
+        if (f.object == kBranch) continue;
         p.figure[k] = f.scale * (f.object ? json_number(j, f.object, f.key) : json_number(j, f.key));
       }
       p.cost = p.run.cpu / m.until;
+      // U_mf and the fixed bed: the same point swept down from the top velocity.
+      p.branch = decreasing_branch(o, scenes[i], protocol.velocities, protocol.run_time,
+                                   protocol.averaging);
+      for (std::size_t k = 0; k < kN; ++k) {
+        if (kFigures[k].object != kBranch) continue;
+        p.figure[k] = std::string(kFigures[k].key) == "umf" ? p.branch.umf
+                                                            : p.branch.dp_at(kHalfUmf);
+      }
     } else {
       std::fill(std::begin(p.figure), std::end(p.figure), NAN);
     }
     if (o.log)
       o.log("  " + p.label + ": " +
             (p.run.ok ? fmt("dp %.0f Pa", p.figure[0]) + fmt(", %.2f Hz", p.figure[1]) +
+                            fmt(", U_mf %.2f m/s", p.figure[kN - 2]) +
                             fmt(", cost %.3g CPU s/s", p.cost)
                       : "failed: " + p.run.error));
     return p;
@@ -262,17 +299,23 @@ std::vector<std::string> charts(const Teaching& m, const std::string& dir) {
 }
 
 std::string findings(const Teaching& m) {
+  const Branch protocol = branch_protocol(m.size);
   std::ostringstream md;
   md << "Each point runs " << m.until << " s of the jetted bed from the same packed bed (the "
      << "paper's packing of this seed), with the teaching scene's jet and top wall, the bubble "
      << "analysis on and averages from " << m.averaging << " s"
      << (m.size == Size::Tiny ? " (tiny size: 300 particles in a bed 0.06 m wide, 2 candidates)"
                               : " (the paper's bed, as docs/studies.md's teaching table)")
-     << ". The candidates' step is the pair contact duration / 3.15 (4 digits) and their "
-        "damping the paper's times sqrt(kappa / 50,000) (the paper's restitution). Bounds: mean "
-        "dp within 5 %, dominant dp frequency (Welch, refined) within 10 %, mean bed height "
-        "within 5 %, max overlap after start-up below 4 %, mean bubble D_e and eruption "
-        "frequency within 15 %. Cost: CPU seconds of the point's thread per simulated second.\n\n"
+     << ". Each point is then swept down from " << protocol.velocities.back() << " m/s through "
+     << protocol.velocities.size() << " velocities (" << protocol.run_time
+     << " s each, averaged from " << protocol.averaging
+     << " s): U_mf from the decreasing branch, and the fixed bed's dp at 0.9 m/s, half the "
+        "paper's U_mf. The candidates' step is the pair contact duration / 3.15 or / 6.3 (the "
+        "paper's; 4 digits) and their damping the paper's times sqrt(kappa / 50,000) (the "
+        "paper's restitution). Bounds: mean dp within 5 %, dominant dp frequency (Welch, "
+        "refined) within 10 %, mean bed height within 5 %, max overlap after start-up below 4 %, "
+        "mean bubble D_e and eruption frequency within 15 %, U_mf and the fixed-bed dp within "
+        "5 %. Cost: CPU seconds of the point's thread per simulated second at 2.8 m/s.\n\n"
      << "| point | kappa (N/m) | dt (s) | steps per gas step | tolerance, refresh |";
   for (const Figure& f : kFigures) md << " " << f.heading << " |";
   md << " cost (CPU s / sim s) | verdict |\n|---|---|---|---|---|";
@@ -339,7 +382,9 @@ const std::vector<Bound>& teaching_bounds() {
       {"bed_height_diff_pct", "bed height", -5.0, 5.0, "no bed height"},
       {"max_overlap_after_startup_pct", "overlap", -INFINITY, 4.0, "no overlap"},
       {"bubble_d_eq_diff_pct", "bubble diameter", -15.0, 15.0, "no bubbles"},
-      {"eruption_frequency_diff_pct", "eruptions", -15.0, 15.0, "no bubbles"}};
+      {"eruption_frequency_diff_pct", "eruptions", -15.0, 15.0, "no bubbles"},
+      {"umf_diff_pct", "U_mf", -5.0, 5.0, "no U_mf"},
+      {"dp_fixed_bed_diff_pct", "fixed bed", -5.0, 5.0, "no fixed-bed dp"}};
   return b;
 }
 

@@ -326,7 +326,10 @@ TEST(Study, TeachingTiny) {
       {"bed_height_mean_m", "bed_height_diff_pct"},
       {"max_overlap_after_startup_pct", "max_overlap_diff_pct"},
       {"bubble_d_eq_mean_m", "bubble_d_eq_diff_pct"},
-      {"eruption_frequency_hz", "eruption_frequency_diff_pct"}};
+      {"eruption_frequency_hz", "eruption_frequency_diff_pct"},
+      {"umf_m_s", "umf_diff_pct"},                      // the decreasing branch's fit
+      {"dp_fixed_bed_pa", "dp_fixed_bed_diff_pct"}};    // its run at 0.9 m/s
+  const std::size_t from_summary = 6;  // the figures before these two are summary.json's
   for (std::size_t r = 0; r < c.rows.size(); ++r)
     ASSERT_EQ(c.rows[r].at("status"), "ok") << c.rows[r].at("failure");
   // Every figure is a number of one stored point's summary.json (points/KEY.json), to the 6
@@ -350,7 +353,7 @@ TEST(Study, TeachingTiny) {
     for (std::size_t r = 0; r < c.rows.size(); ++r) {
       if (std::fabs(c.num(r, "dp_mean_pa") / f[0] - 1.0) > 1e-5) continue;
       ++matched;
-      for (std::size_t k = 0; k < figures.size(); ++k) {
+      for (std::size_t k = 0; k < from_summary; ++k) {
         const double v = c.num(r, figures[k].first);
         if (std::isnan(f[k])) {
           EXPECT_TRUE(std::isnan(v)) << figures[k].first;
@@ -361,6 +364,37 @@ TEST(Study, TeachingTiny) {
     }
   }
   EXPECT_EQ(matched, 3);
+  // U_mf and the fixed-bed dp: each point's stored decreasing branch (points/KEY.json, the record
+  // of the sweep from the top velocity down), its fit and its run at 0.9 m/s.
+  int branches = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "points")) {
+    const nlohmann::json j = nlohmann::json::parse(read_file(e.path()));
+    if (j.at("what").value("point", std::string()) != "decreasing_branch") continue;
+    ++branches;
+    const nlohmann::json& b = j.at("result");
+    const auto u = b.at("u").get<std::vector<double>>();
+    const auto dp = b.at("dp").get<std::vector<double>>();
+    EXPECT_EQ(j.at("what").at("velocities"), nlohmann::json({0.5, 0.9, 1.4, 2.0, 2.6}));
+    ASSERT_EQ(u.size(), dp.size());
+    ASSERT_FALSE(u.empty());
+    EXPECT_TRUE(std::is_sorted(u.begin(), u.end()));
+    double at09 = NAN;
+    for (std::size_t k = 0; k < u.size(); ++k)
+      if (u[k] == 0.9) at09 = dp[k];
+    // The row with this branch's dp at 0.9 m/s has this branch's U_mf.
+    int rows = 0;
+    for (std::size_t r = 0; r < c.rows.size(); ++r) {
+      if (std::isnan(at09) || std::fabs(c.num(r, "dp_fixed_bed_pa") / at09 - 1.0) > 1e-5) continue;
+      ++rows;
+      if (b.at("ok").get<bool>()) {
+        EXPECT_NEAR(c.num(r, "umf_m_s"), b.at("umf").get<double>(), 1e-5 * b.at("umf").get<double>());
+      } else {
+        EXPECT_TRUE(std::isnan(c.num(r, "umf_m_s")));
+      }
+    }
+    EXPECT_EQ(rows, std::isnan(at09) ? 0 : 1);
+  }
+  EXPECT_EQ(branches, 3);
   // The differences: none for the paper-fidelity bed; (candidate / paper - 1) in % for the rest
   // (from figures of 6 digits: within 2e-3 points of %).
   for (std::size_t r = 0; r < c.rows.size(); ++r)
@@ -389,7 +423,9 @@ TEST(Study, TeachingTiny) {
                       {"bed_height_diff_pct", "bed height", -5, 5, "no bed height"},
                       {"max_overlap_after_startup_pct", "overlap", -1e300, 4, "no overlap"},
                       {"bubble_d_eq_diff_pct", "bubble diameter", -15, 15, "no bubbles"},
-                      {"eruption_frequency_diff_pct", "eruptions", -15, 15, "no bubbles"}};
+                      {"eruption_frequency_diff_pct", "eruptions", -15, 15, "no bubbles"},
+                      {"umf_diff_pct", "U_mf", -5, 5, "no U_mf"},
+                      {"dp_fixed_bed_diff_pct", "fixed bed", -5, 5, "no fixed-bed dp"}};
   for (std::size_t r = 0; r < c.rows.size(); ++r) {
     const std::string& verdict = c.rows[r].at("verdict");
     bool all_within = true;
@@ -410,17 +446,19 @@ TEST(Study, TeachingTiny) {
     }
   }
   // The candidates' step and damping follow teaching.toml's rule: dt = the pair contact duration
-  // / 3.15 (4 digits: docs/studies.md's table), damping 0.15 sqrt(kappa / 50,000); the chosen
-  // candidate is teaching.toml's settings.
+  // / 6.3 (the paper's share) or / 3.15 (4 digits: docs/studies.md's table), damping 0.15
+  // sqrt(kappa / 50,000); the chosen candidate is teaching.toml's settings.
   const fluidbed::Settings scene = fluidbed::load_scene(std::string(FLUIDBED_ASSET_DIR) + "/scenes/teaching.toml");
-  const std::map<double, double> table_dt = {{20000.0, 4.743e-5}, {10000.0, 6.708e-5}, {5000.0, 9.487e-5}};
+  const std::map<double, std::pair<double, double>> table_dt = {
+      {20000.0, {2.372e-5, 4.743e-5}}, {10000.0, {3.354e-5, 6.708e-5}}, {5000.0, {4.743e-5, 9.487e-5}}};
   bool chosen = false;
   for (std::size_t r = 1; r < c.rows.size(); ++r) {
     const double k = c.num(r, "stiffness_n_m");
     ASSERT_TRUE(table_dt.count(k)) << k;
-    EXPECT_EQ(c.num(r, "dt_s"), table_dt.at(k));
+    const bool paper_share = c.rows[r].at("label").find("t_c/6.3") != std::string::npos;
+    EXPECT_EQ(c.num(r, "dt_s"), paper_share ? table_dt.at(k).first : table_dt.at(k).second);
     EXPECT_NEAR(c.num(r, "damping_kg_s"), 0.15 * std::sqrt(k / 50000.0), 1e-6 * 0.15);
-    if (k == scene.contact.stiffness &&
+    if (k == scene.contact.stiffness && c.num(r, "dt_s") == scene.time.dt &&
         c.num(r, "particle_steps_per_gas_step") == scene.coupling.particle_steps_per_gas_step &&
         c.num(r, "tolerance") == scene.gas.tolerance &&
         c.num(r, "preconditioner_refresh") == scene.gas.preconditioner_refresh) {
