@@ -176,6 +176,9 @@ int main(int argc, char** argv) {
   view->add_option("--lesson", view_args.lesson,
                    "run a lesson of assets/lessons (a script with captions); headless: DIR/video.mp4");
   view->add_flag("--list-lessons", view_args.list_lessons, "list the lessons and exit");
+  view->add_flag("--umf", view_args.umf_only,
+                 "print the scene's U_mf, as the presets use it (measured from the way down of "
+                 "its sweep once, then cached), and exit");
   view->add_option("--beside", view_args.beside,
                    "a second scene beside the first, its own engine; run, reset and the gas act "
                    "on both (--set too)");

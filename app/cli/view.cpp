@@ -145,22 +145,29 @@ int view_command(const ViewArgs& a) {
 
   // The scene's own U_mf (the slider's scale and ticks, the presets): measured once, cached.
   UmfEstimate umf;
-  if (s.gas.enabled && (window || script.needs_umf())) {
+  if (a.umf_only && !s.gas.enabled)
+    throw InputError("the scene has no gas: it has no minimum fluidization velocity");
+  if (s.gas.enabled && (window || script.needs_umf() || a.umf_only)) {
     try {
-      umf = estimate_umf(s, [](const std::string& line) {
-        std::printf("fluidbed view: %s\n", line.c_str());
-        std::fflush(stdout);
-      });
+      umf = estimate_umf(
+          s,
+          [](const std::string& line) {
+            std::printf("fluidbed view: %s\n", line.c_str());
+            std::fflush(stdout);
+          },
+          asset_dir() + "/umf");
     } catch (const std::exception& e) {
-      if (script.needs_umf()) throw;  // the script's presets cannot be carried out
+      if (script.needs_umf() || a.umf_only) throw;  // the script's presets cannot be carried out
       std::printf("fluidbed view: no U_mf for this scene (%s): no presets\n", e.what());
     }
   }
   if (umf.umf > 0.0) {
     std::printf(
-        "fluidbed view: U_mf = %.3f m/s (%s; %s)\n", umf.umf, UmfEstimate::kMethod,
-        umf.from_cache ? "cached" : (std::to_string(umf.evaluations) + " fixed-bed runs").c_str());
+        "fluidbed view: U_mf = %.3f m/s (%s; %s)\n", umf.umf, umf.method().c_str(),
+        umf.from_cache ? ("cached: " + umf.cache_file).c_str()
+                       : (std::to_string(umf.evaluations) + " runs").c_str());
   }
+  if (a.umf_only) return 0;
 
   HeadlessView hv;
   hv.frames = fo;
@@ -199,6 +206,8 @@ int view_command(const ViewArgs& a) {
   vo.max_fps = a.max_fps;
   vo.umf = umf.umf;
   vo.umf_cached = umf.from_cache;
+  vo.umf_method = umf.method();
+  vo.umf_method_short = umf.method_short();
   vo.scene_velocity = s.gas.enabled ? s.inlet.superficial_velocity : 0.0;
   vo.dt = s.time.dt;
   vo.lesson = !a.lesson.empty();

@@ -17,6 +17,7 @@ struct ViewArgs {
   std::string script;  // a view script (view/script.hpp); empty: interactive
   std::string lesson;  // a lesson of assets/lessons (its NAME.txt), run as a script
   bool list_lessons = false;
+  bool umf_only = false;  // --umf: print the scene's U_mf (measured once, cached) and exit
   std::string beside;    // a second scene beside the first (the window's; --set applies to both)
   bool present = false;  // the window opens in the presenter mode (headless frames: no change)
   std::string out;                    // screenshots, recordings, headless frames; empty: out/view

@@ -213,7 +213,7 @@ void Viewer::draw_gas_section() {
   ImGui::Text("jet %.1f m/s (fastest inlet face %.1f m/s)", st.jet_velocity, st.inlet_jet_velocity);
   if (opt_.umf > 0.0) {
     ImGui::TextWrapped("U_mf = %.2f m/s (U = %.2f U_mf), measured on this scene: %s%s.", opt_.umf,
-                       st.superficial_velocity / opt_.umf, UmfEstimate::kMethod,
+                       st.superficial_velocity / opt_.umf, opt_.umf_method.c_str(),
                        opt_.umf_cached ? " (from the cache)" : "");
     const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
     for (std::size_t k = 0; k < std::size(kPresets); ++k) {

@@ -110,7 +110,7 @@ void Viewer::draw_presenter() {
     if (st.curve.umf.ok && opt_.umf > 0.0)
       phase += fmt(". This curve's way down puts U_mf near %.2f m/s (rough: a few short points); ",
                    st.curve.umf.umf) +
-               fmt("the stage buttons use %.2f m/s, the packed bed held still.", opt_.umf);
+               fmt("the stage buttons use %.2f m/s, ", opt_.umf) + opt_.umf_method_short + ".";
     ImGui::TextWrapped("%s", phase.c_str());
   }
   ImGui::BeginChild("present_messages", ImVec2(0.0f, 0.0f), true);

@@ -17,7 +17,8 @@ struct Preset {
 
 inline constexpr Preset kPresets[] = {
     {"fixed", "Fixed bed", 0.6, "the gas seeps through the packed bed; dp grows with U"},
-    {"minimum", "Minimum fluidization", 1.0, "dp has reached the bed's weight per area"},
+    {"minimum", "Minimum fluidization", 1.0,
+     "the gas just carries the bed's weight; a packed bed first holds dp above it (Fig. 6's peak)"},
     {"bubbling", "Bubbling", 1.15, "gas beyond U_mf rises through the bed as bubbles"},
     {"slugging", "Slugging", 1.5, "bubbles as wide as the bed lift plugs of particles"},
 };

@@ -45,6 +45,7 @@ struct ViewerOptions {
   // whether it came from the cache.
   double umf = 0.0;
   bool umf_cached = false;
+  std::string umf_method, umf_method_short;  // how it was measured (UmfEstimate)
   double scene_velocity = 0.0;  // m/s, the scene's own (a tick on the slider)
   double dt = 0.0;              // s, the scene's particle step (a script's `at T` that came late)
   // The script is a lesson: its `quit` ends the lesson but leaves the window open on its last

@@ -7,12 +7,16 @@
 #include <map>
 #include <numeric>
 
+#include <unistd.h>
+
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/hash.hpp"
 #include "core/roots.hpp"
 #include "core/steps.hpp"
+#include "core/text_format.hpp"
 #include "run/packed_bed.hpp"
+#include "run/velocity_sweep.hpp"
 #include "scene/scene_loader.hpp"
 #include "sim/checks.hpp"
 #include "sim/simulation.hpp"
@@ -53,59 +57,164 @@ double fixed_bed_lift(const Settings& fixed, double u) {
   return force / weight;
 }
 
-UmfEstimate estimate_umf(const Settings& scene,
+double force_balance_umf(const Settings& scene, double wen_yu, int& runs,
                          const std::function<void(const std::string&)>& notify) {
-  namespace fs = std::filesystem;
   const Settings fixed = fixed_bed_settings(scene, notify);
-  UmfEstimate e;
-  e.wen_yu = wen_yu_umf(scene.particles.diameter, scene.particles.density, scene.gas.density,
-                        scene.gas.viscosity, scene.physics.gravity);
-  if (!(e.wen_yu > 0.0))
-    throw InputError("the particles are no heavier than the gas: no minimum fluidization");
-  // Everything that decides the answer: the fixed bed's settings and its packed state (named by
-  // the hash of its own settings).
-  const std::string key = "umf fixed-bed balance v1\n" + to_toml(fixed) + "\nstate " +
-                          fs::path(fixed.packed_state).filename().string() + "\n";
-  Fnv1a h;
-  h.bytes(key.data(), key.size());
-  char name[64];
-  std::snprintf(name, sizeof name, "umf-%016llx.txt", static_cast<unsigned long long>(h.digest()));
-  e.cache_file = (fs::path(cache_dir()) / name).string();
-  if (std::ifstream in(e.cache_file); in) {
-    std::string word;
-    double v = 0.0;
-    if (in >> word >> v && word == "umf_m_s" && v > 0.0 && std::isfinite(v)) {
-      e.umf = v;
-      e.from_cache = true;
-      return e;
-    }
-  }
-  if (notify)
-    notify(
-        "measuring this scene's minimum fluidization velocity (fixed-bed force balance); "
-        "cached as " +
-        e.cache_file);
   std::map<double, double> seen;  // the bracket's ends are asked for again by false_position
   auto f = [&](double u) {
     if (auto it = seen.find(u); it != seen.end()) return it->second;
-    ++e.evaluations;
+    ++runs;
     return seen[u] = fixed_bed_lift(fixed, u) - 1.0;
   };
-  double lo = 0.5 * e.wen_yu, hi = 1.5 * e.wen_yu;
+  double lo = 0.5 * wen_yu, hi = 1.5 * wen_yu;
   double flo = f(lo), fhi = f(hi);
   for (int k = 0; k < 6 && flo > 0.0; ++k) flo = f(lo *= 0.5);
   for (int k = 0; k < 6 && fhi < 0.0; ++k) fhi = f(hi *= 1.5);
   if (!(flo < 0.0 && fhi > 0.0))
     throw SimulationFailure("the fixed bed's fluid force did not cross its weight between " +
                             std::to_string(lo) + " and " + std::to_string(hi) + " m/s");
-  const RootBracket b = false_position(f, lo, hi, 8, 2e-3 * e.wen_yu);
-  e.umf = b.secant_root();
+  return false_position(f, lo, hi, 8, 2e-3 * wen_yu).secant_root();
+}
+
+namespace {
+
+// The scene as its U_mf sees it: what names it, its velocity, its end and its outputs do not
+// decide U_mf (the sweep sets each run's velocity and length).
+Settings umf_scene(const Settings& scene) {
+  Settings s = scene;
+  s.scene = SceneInfo{};
+  s.scene.name = "umf";
+  s.inlet.superficial_velocity = 0.0;
+  s.time.end = 0.0;
+  s.diagnostics.save_state.clear();
+  s.diagnostics.probes.clear();
+  s.threads = 1;  // the key's: results are the same bits for any thread count
+  return s;
+}
+
+constexpr double kRunTime = 2.0, kAveraging = 1.0;  // s: as the teaching study's branch
+
+}  // namespace
+
+bool read_umf_answer(const std::string& file, UmfEstimate& e) {
+  std::ifstream in(file);
+  if (!in) return false;
+  std::string word;
+  double v = 0.0;
+  if (!(in >> word >> v) || word != "umf_m_s" || !(v > 0.0) || !std::isfinite(v)) return false;
+  std::string how;
+  if (!(in >> word >> how) || word != "method") return false;
+  UmfEstimate r = e;
+  r.umf = v;
+  r.from_sweep = how == "decreasing_branch";
+  while (in >> word && word == "point") {
+    double u = 0.0, dp = 0.0;
+    if (!(in >> u >> dp)) return false;
+    r.u.push_back(u);
+    r.dp.push_back(dp);
+  }
+  r.from_cache = true;
+  r.cache_file = file;
+  e = r;
+  return true;
+}
+
+std::string UmfEstimate::method() const {
+  return from_sweep
+             ? "the decreasing branch of this scene's own sweep (" + std::to_string(u.size()) +
+                   " velocities, 2 s each), where the defluidized bed's line meets the plateau, "
+                   "as `fluidbed sweep` finds it"
+             : "fixed-bed force balance: the packed bed held still, uniform inflow, fluid force "
+               "= weight (the sweep's way down gave none)";
+}
+
+std::string UmfEstimate::method_short() const {
+  return from_sweep ? "measured on the way down, as Fig. 6 is" : "the packed bed held still";
+}
+
+std::string umf_cache_name(const Settings& scene) {
+  namespace fs = std::filesystem;
+  const Settings s = umf_scene(scene);
+  std::string start;
+  if (s.particles.placement == Placement::Packed)
+    start = fs::path(packed_bed_state(s)).filename().string();
+  const std::string key = "umf decreasing branch v2\n" + to_toml(s) + "\nstart " + start + "\n";
+  Fnv1a h;
+  h.bytes(key.data(), key.size());
+  char name[64];
+  std::snprintf(name, sizeof name, "umf-%016llx.txt", static_cast<unsigned long long>(h.digest()));
+  return name;
+}
+
+UmfEstimate estimate_umf(const Settings& scene,
+                         const std::function<void(const std::string&)>& notify,
+                         const std::string& shipped) {
+  namespace fs = std::filesystem;
+  if (!scene.gas.enabled)
+    throw InputError("the scene has no gas: it has no minimum fluidization velocity");
+  UmfEstimate e;
+  e.wen_yu = wen_yu_umf(scene.particles.diameter, scene.particles.density, scene.gas.density,
+                        scene.gas.viscosity, scene.physics.gravity);
+  if (!(e.wen_yu > 0.0))
+    throw InputError("the particles are no heavier than the gas: no minimum fluidization");
+  Settings s = umf_scene(scene);
+  prepare_packed_bed(s, notify);
+  const std::string name = umf_cache_name(scene);
+  e.cache_file = (fs::path(cache_dir()) / name).string();
+  if (read_umf_answer(e.cache_file, e)) return e;
+  if (!shipped.empty() && read_umf_answer((fs::path(shipped) / name).string(), e)) return e;
+
+  const std::vector<double> velocities = decreasing_branch_velocities(scene);
+  if (notify)
+    notify("measuring this scene's minimum fluidization velocity from the way down of its sweep (" +
+           std::to_string(velocities.size()) + " runs of " + std::to_string(int(kRunTime)) +
+           " s, from " + format_number("%.2f", velocities.back()) + " m/s down; once: cached as " +
+           e.cache_file + ")");
+  SweepOptions o;
+  o.velocities = velocities;
+  o.run_time = kRunTime;
+  o.averaging_start = kAveraging;
+  o.threads = 1;
+  o.decreasing_only = true;
+  // A folder of this process's own: two programs measuring the same scene at once each finish
+  // their sweep (the answer file is written atomically).
+  o.out_dir = (fs::path(cache_dir()) / (fs::path(name).stem().string() + "-runs-" +
+                                        std::to_string(static_cast<long long>(::getpid()))))
+                  .string();
+  o.log = [&](const std::string& line) {
+    if (notify) notify("  " + line);
+  };
+  s.threads = scene.threads;  // the same bits on any number of threads: as fast as the scene may
+  const SweepResult r = run_sweep(s, o);
+  e.evaluations = static_cast<int>(velocities.size());
   std::error_code ec;
+  fs::remove_all(o.out_dir, ec);
+  if (r.umf.ok) {
+    e.umf = r.umf.umf;
+    e.from_sweep = true;
+    for (const auto& p : r.down)
+      if (p.ok) {
+        e.u.push_back(p.u);
+        e.dp.push_back(p.dp_mean);
+      }
+    for (std::size_t k = r.up.size(); k-- > 0;)
+      if (r.up[k].ok) {
+        e.u.push_back(r.up[k].u);
+        e.dp.push_back(r.up[k].dp_mean);
+        break;
+      }
+  } else {
+    if (notify)
+      notify("the way down gave no U_mf (" + r.umf.why +
+             "): the fixed-bed force balance stands in");
+    e.umf = force_balance_umf(scene, e.wen_yu, e.evaluations, notify);
+  }
   fs::create_directories(cache_dir(), ec);
   write_file_atomically(e.cache_file, [&](std::ofstream& out) {
-    char line[128];
-    std::snprintf(line, sizeof line, "umf_m_s %.6f\n", e.umf);
-    out << line << "# " << UmfEstimate::kMethod << "\n";
+    out << format_number("umf_m_s %.6f\n", e.umf) << "method "
+        << (e.from_sweep ? "decreasing_branch" : "force_balance") << "\n";
+    for (std::size_t k = 0; k < e.u.size(); ++k) out << "point " << format_number("%.6g", e.u[k]) << " " << format_number("%.6g", e.dp[k]) << "\n";
+    out << "# " << e.method() << "\n";
   });
   return e;
 }

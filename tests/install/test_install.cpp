@@ -163,6 +163,10 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndHoldsProgramScenesAndManPag
   EXPECT_TRUE(files.count("./usr/share/doc/fluidbed/docs/teaching.md")) << list.out;
   for (const std::string& scene : shipped_scenes())
     EXPECT_TRUE(files.count("./usr/share/fluidbed/scenes/" + scene)) << scene << "\n" << list.out;
+  // The shipped beds' U_mf answers, so that the installed viewer opens them at once.
+  for (const auto& f : std::filesystem::directory_iterator(std::string(FLUIDBED_ASSET_DIR) + "/umf"))
+    EXPECT_TRUE(files.count("./usr/share/fluidbed/umf/" + f.path().filename().string()))
+        << f.path() << "\n" << list.out;
 #ifdef FLUIDBED_PYTHON_EXE
   // The Python module, where Debian's python3 finds it (/usr/lib/python3/dist-packages).
   EXPECT_TRUE(files.count("./usr/lib/python3/dist-packages/fluidbed/__init__.py")) << list.out;
