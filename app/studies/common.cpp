@@ -410,13 +410,7 @@ DecreasingBranch decreasing_branch(const Options& o, const Settings& s,
   what["averaging_start"] = averaging;
   const fs::path dir = points_dir(o) / point_key(what);
   const nlohmann::json j = stored_point(o, what, true, [&] {
-    SweepOptions so;
-    so.velocities = sorted;
-    so.run_time = run_time;
-    so.averaging_start = averaging;
-    so.threads = 1;
-    so.decreasing_only = true;
-    so.out_dir = dir.string();
+    SweepOptions so = decreasing_branch_options(sorted, run_time, averaging, dir.string());
     so.resume = o.resume && fs::exists(dir / "sweep.json");
     so.stop = o.stop;
     const SweepResult r = run_sweep(s, so);
@@ -425,13 +419,7 @@ DecreasingBranch decreasing_branch(const Options& o, const Settings& s,
                           {"wall", r.wall_time}, {"u", nlohmann::json::array()},
                           {"dp", nlohmann::json::array()}};
     std::string why = r.umf.ok ? "" : "no U_mf: " + r.umf.why;
-    std::vector<SweepPoint> branch = r.down;  // with the chain's top, the highest finished run
-    for (std::size_t k = r.up.size(); k-- > 0;)
-      if (r.up[k].ok) {
-        branch.push_back(r.up[k]);
-        break;
-      }
-    for (const SweepPoint& p : branch) {
+    for (const SweepPoint& p : way_down(r)) {
       if (p.ok) {
         out["u"].push_back(p.u);
         out["dp"].push_back(p.dp_mean);

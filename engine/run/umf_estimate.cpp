@@ -170,17 +170,13 @@ UmfEstimate estimate_umf(const Settings& scene,
            std::to_string(velocities.size()) + " runs of " + std::to_string(int(kRunTime)) +
            " s, from " + format_number("%.2f", velocities.back()) + " m/s down; once: cached as " +
            e.cache_file + ")");
-  SweepOptions o;
-  o.velocities = velocities;
-  o.run_time = kRunTime;
-  o.averaging_start = kAveraging;
-  o.threads = 1;
-  o.decreasing_only = true;
   // A folder of this process's own: two programs measuring the same scene at once each finish
   // their sweep (the answer file is written atomically).
-  o.out_dir = (fs::path(cache_dir()) / (fs::path(name).stem().string() + "-runs-" +
-                                        std::to_string(static_cast<long long>(::getpid()))))
-                  .string();
+  SweepOptions o = decreasing_branch_options(
+      velocities, kRunTime, kAveraging,
+      (fs::path(cache_dir()) / (fs::path(name).stem().string() + "-runs-" +
+                                std::to_string(static_cast<long long>(::getpid()))))
+          .string());
   o.log = [&](const std::string& line) {
     if (notify) notify("  " + line);
   };
@@ -192,16 +188,10 @@ UmfEstimate estimate_umf(const Settings& scene,
   if (r.umf.ok) {
     e.umf = r.umf.umf;
     e.from_sweep = true;
-    for (const auto& p : r.down)
+    for (const SweepPoint& p : way_down(r))
       if (p.ok) {
         e.u.push_back(p.u);
         e.dp.push_back(p.dp_mean);
-      }
-    for (std::size_t k = r.up.size(); k-- > 0;)
-      if (r.up[k].ok) {
-        e.u.push_back(r.up[k].u);
-        e.dp.push_back(r.up[k].dp_mean);
-        break;
       }
   } else {
     if (notify)

@@ -329,16 +329,10 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
 
   // Umf from the decreasing branch, with the shared top point.
   std::vector<double> us, dps;
-  for (const auto& p : result.down)
+  for (const SweepPoint& p : way_down(result))
     if (p.ok) {
       us.push_back(p.u);
       dps.push_back(p.dp_mean);
-    }
-  for (std::size_t k = n; k-- > 0;)  // the chain's start: the highest finished increasing run
-    if (result.up[k].ok) {
-      us.push_back(result.up[k].u);
-      dps.push_back(result.up[k].dp_mean);
-      break;
     }
   result.umf = fit_umf(us, dps);
   constexpr double kPi = std::numbers::pi;
@@ -349,6 +343,28 @@ SweepResult run_sweep(const Settings& sweep_scene, const SweepOptions& options) 
   result.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+SweepOptions decreasing_branch_options(std::vector<double> velocities, double run_time,
+                                       double averaging, std::string out_dir) {
+  SweepOptions o;
+  o.velocities = std::move(velocities);
+  o.run_time = run_time;
+  o.averaging_start = averaging;
+  o.threads = 1;  // the chain is one run after another
+  o.decreasing_only = true;
+  o.out_dir = std::move(out_dir);
+  return o;
+}
+
+std::vector<SweepPoint> way_down(const SweepResult& r) {
+  std::vector<SweepPoint> branch = r.down;
+  for (std::size_t k = r.up.size(); k-- > 0;)  // the chain's start
+    if (r.up[k].ok) {
+      branch.push_back(r.up[k]);
+      break;
+    }
+  return branch;
 }
 
 nlohmann::json sweep_identity(const Settings& scene, const SweepOptions& options) {

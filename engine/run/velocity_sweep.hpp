@@ -93,6 +93,14 @@ std::vector<double> decreasing_branch_velocities(const Settings& scene);
 // the Di Felice drag at porosity 1, C_d = (0.63 + 4.8 / sqrt(Re))^2 (model.md).
 double terminal_velocity(const Settings& scene);
 
+// The options of a decreasing branch alone (decreasing_only): VELOCITIES, RUN_TIME s each averaged
+// from AVERAGING s, one run at a time, into OUT_DIR.
+SweepOptions decreasing_branch_options(std::vector<double> velocities, double run_time,
+                                       double averaging, std::string out_dir);
+// The way down as U_mf's fit reads it, by increasing velocity: the decreasing branch's runs
+// (finished or not) and last the highest finished increasing run, where the branch started.
+std::vector<SweepPoint> way_down(const SweepResult& r);
+
 // Throws InputError for bad options; failed runs are recorded, not thrown.
 SweepResult run_sweep(const Settings& scene, const SweepOptions& options);
 
