@@ -59,7 +59,8 @@ const std::vector<Info>& all_studies() {
       {"teaching",
        "Teaching scene: the cheap settings' bed against the paper-fidelity bed, within the "
        "bounds the teaching scene was chosen by",
-       "about 15 min (10 runs of 6 s of the paper's bed, each then swept down through 8 velocities)",
+       "about 15 min (10 runs of 6 s of the paper's bed, each then swept down through 8 "
+       "velocities)",
        "about 15 s", teaching_study, true,
        teaching_bounds()},
       {"sensitivity",

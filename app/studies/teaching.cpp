@@ -4,8 +4,9 @@
 // overlap after start-up below 4 %, mean bubble diameter and eruption frequency within 15 %, and
 // (what its lessons teach) U_mf and the fixed bed's dp at half the paper's U_mf within 5 %, from
 // a decreasing branch of the sweep. This study runs the paper-fidelity bed and the candidates of
-// that choice from one packed bed, each judged by those bounds; with `--seeds` the bounds are judged over packings (the ensemble's
-// summary), since several differences are smaller than one run's spread.
+// that choice from one packed bed, each judged by those bounds; with `--seeds` the bounds are
+// judged over packings (the ensemble's summary), since several differences are smaller than one
+// run's spread.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -31,10 +32,9 @@ struct Candidate {
 };
 
 // The rows of the teaching table (docs/studies.md), in its order; the tiny size keeps the chosen
-// one and the one whose frequency is off, so that its table shows both verdicts when the tiny bed
-// bubbles.
+// one and the earlier one (t_c / 3.15), whose U_mf and fixed bed are off on the paper's bed.
 // The steps per contact: half the paper's (3.15) keeps the bed at 2.8 m/s within its bounds, but
-// its defluidized bed jams (a U_mf 20 % low); the paper's 6.3 costs twice the particle steps.
+// its defluidized bed jams (a U_mf 20 % low); the paper's 6.3 takes twice the particle steps.
 std::vector<Candidate> candidates(Size size) {
   if (size == Size::Tiny) return {{5000.0, 3, 1e-3, 0.1, 6.3}, {10000.0, 2, 1e-3, 0.1, 3.15}};
   return {{20000.0, 3, 1e-3, 0.1, 3.15}, {10000.0, 2, 1e-6, 0.002, 3.15},

@@ -203,7 +203,9 @@ UmfEstimate estimate_umf(const Settings& scene,
   write_file_atomically(e.cache_file, [&](std::ofstream& out) {
     out << format_number("umf_m_s %.6f\n", e.umf) << "method "
         << (e.from_sweep ? "decreasing_branch" : "force_balance") << "\n";
-    for (std::size_t k = 0; k < e.u.size(); ++k) out << "point " << format_number("%.6g", e.u[k]) << " " << format_number("%.6g", e.dp[k]) << "\n";
+    for (std::size_t k = 0; k < e.u.size(); ++k)
+      out << "point " << format_number("%.6g", e.u[k]) << " " << format_number("%.6g", e.dp[k])
+          << "\n";
     out << "# " << e.method() << "\n";
   });
   return e;
