@@ -81,12 +81,14 @@ TEST(DropTest, RestitutionOverContactPhasesAtPaperStep) {
 
 TEST(DropTest, ElasticBouncesReturnToDropHeight) {
   // eta = 0: every bounce should return to the drop height. Recorded for each integrator and
-  // contact form at the paper's step and ten times smaller; asserted for the paper's scheme at
-  // the small step (0.2 %), reported for the others.
+  // contact form at the paper's step, and for the paper's scheme ten times smaller too, where it
+  // is asserted (0.2 %); reported for the others (the small step, ten times the cost of the rest,
+  // only for the scheme it asserts).
   const double h0 = one_metre_per_second();
   for (const char* integrator : {"newmark", "velocity_verlet", "symplectic_euler"}) {
     for (const char* disp : {"incremental", "geometric"}) {
       for (double dt : {1.5e-5, 1.5e-6}) {
+        if (dt < 1e-5 && std::string(integrator) != "newmark") continue;
         const DropResult r = drop(h0, dt, 0.0, integrator, 10, disp);
         ASSERT_EQ(r.heights.size(), 10u) << integrator << " dt " << dt;
         std::printf("%-17s %-11s dt %.1e: height / drop height after bounces 1..10:", integrator,

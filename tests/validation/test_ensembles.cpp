@@ -214,7 +214,8 @@ TEST(Ensembles, SweepOverSeeds) {
 TEST(Ensembles, StoppedEnsembleResumesToTheUnstoppedOnesFiles) {
   namespace fs = std::filesystem;
   const fs::path dir = temp_dir("ensemble-resume");
-  const std::string args = small_bed_args() + " --seeds 3 --until 2 --threads 2 --plots";
+  // 1.2 s: the second member is stopped past 0.5 s (50 rows), with 0.7 s left to stop it in.
+  const std::string args = small_bed_args() + " --seeds 3 --until 1.2 --threads 2 --plots";
   const auto ref = run_fluidbed(args + " --out " + (dir / "ref").string(), "ensemble-resume-ref");
   ASSERT_EQ(ref.status, 0) << ref.err;
 
