@@ -173,7 +173,8 @@ int view_command(const ViewArgs& a) {
   hv.frames = fo;
   hv.out = out;
   hv.until = a.run_like.until;
-  hv.umf = umf.umf;
+  hv.umf = umf;
+  hv.umf_shipped = asset_dir() + "/umf";
   hv.frames.frames = true;
   // A lesson is made into a teaching video; a plain scene with --video too.
   hv.frames.video = fo.video || !a.lesson.empty();
@@ -194,6 +195,8 @@ int view_command(const ViewArgs& a) {
   }
 
   ViewEngine::Options eo;
+  eo.umf = umf;
+  eo.umf_shipped = asset_dir() + "/umf";
   eo.start_running = script.lines.empty();  // a script starts paused and runs the bed itself
   ViewEngine engine(s, eo);
   ViewerOptions vo;

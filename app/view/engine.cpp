@@ -83,6 +83,7 @@ ViewEngine::ViewEngine(const Settings& scene, Options options)
     : session_(scene, options.settle, options.average),
       options_(options),
       running_(options.start_running) {
+  session_.set_umf(options.umf, options.umf_shipped);
   status_.start_hash = session_.model().start_hash();
   status_.state_hash = session_.model().start_hash();
   publish();  // the starting state, before the thread runs
@@ -162,6 +163,36 @@ void ViewEngine::apply(const ViewCommand& c) {
         samples_.clear();
       }
       break;
+    case K::particles: {
+      // Seconds of work (a packing, the force balances): the panel says so meanwhile.
+      auto say = [this](const std::string& line) {
+        {
+          std::lock_guard lock(status_mutex_);
+          status_.busy = line;
+        }
+        status_changed_.notify_all();
+      };
+      say(c.value > 0.0 ? format_number("packing a bed of %.1f mm spheres", 1000.0 * c.value) +
+                              format_number(" of %.0f kg/m^3", c.density)
+                        : std::string("packing the scene's own bed"));
+      try {
+        session_.apply(c, say);
+      } catch (...) {
+        say("");
+        throw;
+      }
+      say("");
+      ++generation_;  // a new bed: the plots start again
+      steps_left_ = 0;
+      until_step_ = -1;
+      error_.clear();
+      error_plain_.clear();
+      {
+        std::lock_guard lock(status_mutex_);
+        samples_.clear();
+      }
+      break;
+    }
     default:
       session_.apply(c);
       break;
@@ -203,6 +234,17 @@ void ViewEngine::publish() {
     status_.curve = session_.curve();  // a few dozen points at most
     status_.held_at_top = session_.held_at_top();
     status_.bubbles = session_.bubbles();
+    status_.particle_diameter = sim.settings().particles.diameter;
+    status_.particle_density = sim.settings().particles.density;
+    status_.dt = sim.settings().time.dt;
+    const UmfEstimate& umf = session_.umf();
+    if (status_.particles_changes != session_.particles_changes() || status_.umf_method.empty()) {
+      status_.umf = umf.umf;
+      status_.umf_cached = umf.from_cache;
+      status_.umf_method = umf.umf > 0.0 ? umf.method() : "";
+      status_.umf_method_short = umf.umf > 0.0 ? umf.method_short() : "";
+      status_.particles_changes = session_.particles_changes();
+    }
   }
   status_changed_.notify_all();
 }

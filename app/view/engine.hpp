@@ -63,6 +63,15 @@ struct EngineStatus {
   std::string refusal;  // the last command refused (a stiffness the step cannot take), one line
   int held_at_top = 0;  // spheres the gas holds against the top screen (ViewSession::held_at_top)
   CurveState curve;     // the live Fig. 6
+  // The spheres in use (m, kg/m^3), the particle step (s) and the U_mf for them (ViewSession's;
+  // umf 0: not known), changed by the particles command (particles_changes counts the changes).
+  double particle_diameter = 0.0, particle_density = 0.0, dt = 0.0;
+  double umf = 0.0;
+  bool umf_cached = false;
+  std::string umf_method, umf_method_short;
+  std::uint64_t particles_changes = 0;
+  // Work that holds the bed for seconds (a new packed bed): what is being done; empty: none.
+  std::string busy;
   std::shared_ptr<const BubbleView> bubbles;  // the last bubble analysis (regime, outlines)
 };
 
@@ -85,6 +94,8 @@ class ViewEngine {
     bool start_running = true;
     double settle = ViewSession::kSettle;    // s, the live curve's settling time
     double average = ViewSession::kAverage;  // s, its averaging window
+    UmfEstimate umf;           // the scene's measured U_mf (umf 0: not measured)
+    std::string umf_shipped;   // the folder of shipped U_mf answers
   };
   ViewEngine(const Settings& scene, Options options);
   ~ViewEngine();  // stops the thread

@@ -246,7 +246,7 @@ class HeadlessTarget : public ScriptTarget {
     std::fprintf(stderr, "fluidbed view: headless: script line %d has no effect without a window\n",
                  l.line);
   }
-  double umf() const override { return o_.umf; }
+  double umf() const override { return session_.umf().umf; }
   double sim_time() const override { return session_.sim().time(); }
   double sim_step() const override { return session_.sim().settings().time.dt; }
   bool velocity(double u) override { return send(ViewCommand::Kind::velocity, u); }
@@ -254,7 +254,27 @@ class HeadlessTarget : public ScriptTarget {
   bool stiffness(double k) override { return send(ViewCommand::Kind::stiffness, k); }
   bool settle(double s) override { return send(ViewCommand::Kind::settle, s); }
   bool average(double s) override { return send(ViewCommand::Kind::average, s); }
-  bool reset() override { return send(ViewCommand::Kind::reset, 0.0); }
+  // A new start (a reset, new particles) goes back to t = 0: the last `at T` is behind it.
+  bool reset() override {
+    target_step_ = 0;
+    return send(ViewCommand::Kind::reset, 0.0);
+  }
+  bool particles(double diameter, double density) override {
+    target_step_ = 0;
+    const std::uint64_t changes = session_.particles_changes();
+    session_.apply({ViewCommand::Kind::particles, diameter, density},
+                   [](const std::string& line) { std::printf("%s\n", line.c_str()); });
+    if (session_.particles_changes() != changes) {
+      const UmfEstimate& u = session_.umf();
+      if (u.umf > 0.0)
+        std::printf("U_mf = %.3f m/s for the new particles (%s)\n", u.umf, u.method().c_str());
+    }
+    std::printf("%zu spheres of %.4g mm and %.5g kg/m^3, time step %.4g s, from a packed bed\n",
+                session_.sim().particle_count(),
+                1000.0 * session_.sim().settings().particles.diameter,
+                session_.sim().settings().particles.density, session_.sim().settings().time.dt);
+    return true;
+  }
   bool save_curve(const std::string& file) override {
     write_curve_file(file, session_.curve(), o_.frames.font);
     std::printf("wrote %s\n", file.c_str());
@@ -307,7 +327,7 @@ class HeadlessTarget : public ScriptTarget {
 int view_headless(const Settings& scene, const ViewScript& script, const HeadlessView& o) {
   namespace fs = std::filesystem;
   ViewSession session(scene);
-  const double dt = scene.time.dt;
+  session.set_umf(o.umf, o.umf_shipped);
   const bool gas = session.sim().has_gas();
   // The end: --until, else the script's quit (at the last time it named), else the scene's end.
   double until = scene.time.end;
@@ -322,7 +342,6 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
     }
   }
   if (o.until >= 0.0) until = o.until;
-  const std::int64_t last = steps_for(until, dt);
   render::RenderSettings look = o.frames.look;
   look.caption_band = true;
   std::error_code ec;
@@ -344,11 +363,19 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
     pictures.push(std::move(job));
   };
   // Frame k at the step nearest k intervals of simulated time stepped (a reset goes back in
-  // time, the video goes on).
-  std::int64_t stepped = 0;
+  // time, the video goes on; new particles bring another step: the time stepped before it is
+  // counted at the old one).
+  std::int64_t stepped = 0, stepped_before = 0;
+  double dt = scene.time.dt, time_before = 0.0;
   int frames = 0;
   const auto frame_if_due = [&] {
-    if (stepped != steps_for(static_cast<double>(frames) * o.frames.interval, dt)) return;
+    if (const double now = session.sim().settings().time.dt; now != dt) {
+      time_before += static_cast<double>(stepped - stepped_before) * dt;
+      stepped_before = stepped;
+      dt = now;
+    }
+    const double due = static_cast<double>(frames) * o.frames.interval - time_before;
+    if (stepped - stepped_before < steps_for(due, dt)) return;
     picture(frames++, "");
   };
 
@@ -359,11 +386,13 @@ int view_headless(const Settings& scene, const ViewScript& script, const Headles
   runner.advance(target);  // the lines before the first `at` act on the first frame
   frame_if_due();
   for (;; runner.advance(target)) {
-    if (target.stopped() || session.sim().steps() >= last) break;
+    if (target.stopped() || session.sim().steps() >= steps_for(until, session.sim().settings().time.dt))
+      break;
     // A SimulationFailure ends the run: exit status 3, nothing more written.
     const std::optional<PlotSample> sample = session.step();
     ++stepped;
     if (sample && gas) {  // the window's dp against time, its last kDpWindow seconds
+      if (!dp.empty() && sample->t < dp.back().first) dp.clear();  // a new start (reset, particles)
       dp.emplace_back(sample->t, sample->dp);
       while (!dp.empty() && dp.front().first < sample->t - kDpWindow) dp.pop_front();
     }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "output/frames.hpp"
+#include "run/umf_estimate.hpp"
 #include "scene/settings.hpp"
 #include "view/script.hpp"
 
@@ -16,7 +17,8 @@ struct HeadlessView {
   FrameOptions frames;  // size, interval, look, font (frames.frames / frames.video: outputs)
   std::string out;      // the folder
   double until = -1.0;  // s, --until (< 0: the script's quit, else the scene's end)
-  double umf = 0.0;     // m/s, the scene's measured U_mf (presets); 0: not measured
+  UmfEstimate umf;      // the scene's measured U_mf (presets; umf 0: not measured)
+  std::string umf_shipped;  // the folder of shipped U_mf answers (a change of the particles)
 };
 
 int view_headless(const Settings& scene, const ViewScript& script, const HeadlessView& o);

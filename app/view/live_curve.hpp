@@ -67,6 +67,11 @@ class LiveCurve {
   // A pressure-drop sample at simulated time t (every output interval). True when it completed a
   // point.
   bool sample(double t, double dp);
+  // Back to nothing with another bed weight (Pa; new particles), from t at velocity u.
+  void clear(double t, double u, double weight_per_area) {
+    st_.weight_per_area = weight_per_area;
+    clear(t, u);
+  }
   // Back to nothing: the bed was reset to the packed bed at t with velocity u.
   void clear(double t, double u);
 

@@ -212,8 +212,10 @@ void Viewer::draw_gas_section() {
   ImGui::TextDisabled("Ctrl+click the slider to type a velocity, Enter to apply it");
   ImGui::Text("jet %.1f m/s (fastest inlet face %.1f m/s)", st.jet_velocity, st.inlet_jet_velocity);
   if (opt_.umf > 0.0) {
-    ImGui::TextWrapped("U_mf = %.2f m/s (U = %.2f U_mf), measured on this scene: %s%s.", opt_.umf,
-                       st.superficial_velocity / opt_.umf, opt_.umf_method.c_str(),
+    // The live number on a line of its own: wrapped with the words after it, a change of U
+    // could move a word to the next line and every control below it.
+    ImGui::Text("U_mf = %.2f m/s (U = %.2f U_mf)", opt_.umf, st.superficial_velocity / opt_.umf);
+    ImGui::TextWrapped("U_mf from %s%s.", opt_.umf_method.c_str(),
                        opt_.umf_cached ? " (from the cache)" : "");
     const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
     for (std::size_t k = 0; k < std::size(kPresets); ++k) {
@@ -384,6 +386,41 @@ void Viewer::draw_bed_section() {
   ImGui::TextDisabled("hover a bubble: its size");
 }
 
+// Other spheres, the count kept: a packed bed of them in seconds (packed once, then cached).
+void Viewer::draw_particles_section() {
+  if (!ImGui::CollapsingHeader("Particle size and density")) return;
+  const EngineStatus& st = status_;
+  const bool own = st.particle_diameter == opt_.scene.particles.diameter &&
+                   st.particle_density == opt_.scene.particles.density;
+  ImGui::TextWrapped("%zu spheres of %.1f mm, %.0f kg/m^3%s; time step %.3g s", st.particles,
+                     1000.0 * st.particle_diameter, st.particle_density,
+                     own ? " (the scene's)" : "", st.dt);
+  ImGui::SetNextItemWidth(-1.0f);
+  ImGui::SliderFloat("##diameter", &diameter_edit_, 2.0f, 6.0f, "diameter %.1f mm",
+                     ImGuiSliderFlags_AlwaysClamp);
+  note_widget("diameter", fmt("%.4g", diameter_edit_));
+  ImGui::SetNextItemWidth(-1.0f);
+  ImGui::SliderFloat("##density", &density_edit_, 500.0f, 8000.0f, "density %.0f kg/m^3",
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  note_widget("density", fmt("%.5g", density_edit_));
+  ImGui::BeginDisabled(!st.busy.empty());
+  if (ImGui::Button("Pack a bed of these"))
+    post({ViewCommand::Kind::particles, 0.001 * static_cast<double>(diameter_edit_),
+          static_cast<double>(density_edit_)});
+  note_widget("pack_particles");
+  ImGui::SameLine();
+  if (ImGui::Button("The scene's particles")) {
+    diameter_edit_ = static_cast<float>(1000.0 * opt_.scene.particles.diameter);
+    density_edit_ = static_cast<float>(opt_.scene.particles.density);
+    post({ViewCommand::Kind::particles, 0.0, 0.0});
+  }
+  ImGui::EndDisabled();
+  if (!st.busy.empty())
+    ImGui::TextWrapped("%s ...", st.busy.c_str());
+  else
+    ImGui::TextDisabled("glass 2500, steel 7800, nylon 1150 kg/m^3");
+}
+
 void Viewer::draw_look_section() {
   if (!ImGui::CollapsingHeader("Colours and layers")) return;
   using render::ColourBy;
@@ -450,6 +487,7 @@ void Viewer::draw_panel() {
   draw_bed_section();
   if (ImGui::CollapsingHeader("dp and overlap against time", ImGuiTreeNodeFlags_DefaultOpen))
     draw_plots();
+  draw_particles_section();
   draw_look_section();
   if (ImGui::CollapsingHeader("The picked particle", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (tracked_ >= 0 && snap_) {

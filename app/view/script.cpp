@@ -131,6 +131,16 @@ ScriptLine parse_line(Reader& r, int line_number) {
       l.number = r.number("a contact stiffness in N/m, or scene");
       if (!(l.number > 0.0)) r.fail("stiffness must be > 0 N/m");
     }
+  } else if (cmd == "particles") {
+    l.kind = Kind::particles;
+    const std::string w = r.word("a diameter in m and a density in kg/m^3, or scene");
+    if (w != "scene") {
+      --r.next;
+      l.number = r.number("a particle diameter in m");
+      if (!(l.number > 0.0)) r.fail("the particle diameter must be > 0 m");
+      l.density = r.number("a particle density in kg/m^3 after the diameter");
+      if (!(l.density > 0.0)) r.fail("the particle density must be > 0 kg/m^3");
+    }
   } else if (cmd == "settle" || cmd == "average") {
     l.kind = cmd == "settle" ? Kind::settle : Kind::average;
     l.number = r.number("simulated seconds");

@@ -10,6 +10,8 @@
 //   preset NAME                a stage of Fig. 6: fixed, minimum, bubbling, slugging (view/presets)
 //   ideal on|off               contact damping 0 and friction 0 (the paper's ideal case)
 //   stiffness K | scene        contact stiffness (N/m), damping scaled to keep the restitution
+//   particles D RHO | scene    spheres of diameter D (m) and density RHO (kg/m^3), the count
+//                              kept: a packed bed of them at the velocity held (view/session.hpp)
 //   settle S   average S       the live curve's settling time and averaging window (simulated s)
 //   curve FILE.csv|FILE.png    save the live curve (Fig. 6 as the class built it)
 //   caption "TEXT" | off       a line of text over the bed (window, screenshots, videos)
@@ -59,11 +61,13 @@ struct ScriptLine {
     settle,
     average,
     curve,
+    particles,
   };
   double at = -1.0;  // s of simulated time; < 0: right after the previous line
   Kind kind = Kind::quit;
   double number =
       0.0;           // velocity (m/s), step count, wait (s), track id (-1: off), zoom, on/off (1/0)
+  double density = 0.0;  // particles: kg/m^3 (number: the diameter, m; 0 and 0: the scene's)
   std::string text;  // colour mode, file, caption, preset; velocity: "umf" (a multiple of U_mf)
   int line = 0;      // in the file, for messages
 };

@@ -53,6 +53,7 @@ void ScriptRunner::apply(const ScriptLine& l, ScriptTarget& t) {
       break;
     // clang-format off
     case K::stiffness: done = t.stiffness(l.number); break;
+    case K::particles: done = t.particles(l.number, l.density); break;
     case K::settle: done = t.settle(l.number); break;
     case K::average: done = t.average(l.number); break;
     case K::curve: done = t.save_curve(l.text); break;

@@ -46,6 +46,9 @@ class ScriptTarget {
   virtual bool velocity(double /*m_per_s*/) { return false; }
   virtual bool ideal(bool /*on*/) { return false; }
   virtual bool stiffness(double /*N_per_m, 0: the scene's*/) { return false; }
+  virtual bool particles(double /*diameter m, 0: the scene's*/, double /*density kg/m^3*/) {
+    return false;
+  }
   virtual bool settle(double /*simulated_seconds*/) { return false; }
   virtual bool average(double /*simulated_seconds*/) { return false; }
   virtual bool save_curve(const std::string& /*file .csv or .png*/) { return false; }

@@ -58,13 +58,11 @@ Settings with_contact(const Settings& scene, bool ideal, double stiffness) {
   return s;
 }
 
-ViewModel::ViewModel(const Settings& scene) : scene_(scene), dir_(private_temp_dir()) {
+ViewModel::ViewModel(const Settings& scene)
+    : opened_(scene), scene_(scene), dir_(private_temp_dir()) {
   try {
     start_file_ = dir_ + "/start.state";
-    Settings start = scene_;  // the scene as `run` starts it (packed bed from the cache)
-    prepare_packed_bed(start);
-    Simulation first(start);
-    first.save_state(start_file_);
+    save_start(scene_);
     // Every simulation of the viewer, the first included, is built the same way (solvers from
     // the settings, then the saved state), so a run after a reset is the run from the start.
     sim_ = build();
@@ -75,6 +73,52 @@ ViewModel::ViewModel(const Settings& scene) : scene_(scene), dir_(private_temp_d
     std::filesystem::remove_all(dir_, ec);
     throw;
   }
+}
+
+void ViewModel::save_start(const Settings& scene) {
+  Settings start = scene;  // the scene as `run` starts it (packed bed from the cache)
+  prepare_packed_bed(start);
+  Simulation first(start);
+  first.save_state(start_file_);
+}
+
+Settings with_particles(const Settings& scene, double d, double rho) {
+  const ParticleSettings& p0 = scene.particles;
+  if (!(d > 0.0) || !std::isfinite(d))
+    throw InputError("the particle diameter must be a positive number of metres");
+  if (!(rho > 0.0) || !std::isfinite(rho))
+    throw InputError("the particle density must be a positive number of kg/m^3");
+  Settings s = scene;
+  const double size = d / p0.diameter;
+  const double mass = rho / p0.density * size * size * size;
+  s.particles.diameter = d;
+  s.particles.density = rho;
+  if (scene.contact.law == ContactLaw::HertzMindlin) {
+    s.time.dt = scene.time.dt * std::pow(mass, 0.4) * std::pow(size, -0.2);
+  } else {
+    s.time.dt = scene.time.dt * std::sqrt(mass);
+    s.contact.damping = scene.contact.damping * std::sqrt(mass);
+  }
+  // The gas step is the gas's (its CFL, the coupling), measured for the scene: kept at most the
+  // scene's, with as many particle steps in it as fit.
+  const int steps = std::max(1, scene.coupling.particle_steps_per_gas_step);
+  const double gas_step = scene.time.dt * steps;
+  s.time.dt = std::min(s.time.dt, gas_step);
+  s.coupling.particle_steps_per_gas_step =
+      std::max(1, static_cast<int>(std::floor(gas_step / s.time.dt * (1.0 + 1e-12))));
+  if (scene.domain.thickness <= p0.diameter * (1.0 + 1e-9)) s.domain.thickness = d;
+  s.particles.fill_height = scene.particles.fill_height * size * size;
+  s.particles.packing_scene.clear();
+  s.packed_state.clear();
+  char what[96];
+  std::snprintf(what, sizeof what, "spheres of %.3g mm and %.4g kg/m^3", 1000.0 * d, rho);
+  if (d > s.domain.thickness * (1.0 + 1e-9))
+    throw InputError(std::string(what) + " do not fit between the front and back walls (" +
+                     std::to_string(1000.0 * s.domain.thickness) + " mm apart)");
+  const SceneCheck c = check_scene(s);
+  if (!c.refusals.empty())
+    throw InputError(std::string(what) + " are refused for this scene: " + c.refusals.front());
+  return s;
 }
 
 ViewModel::~ViewModel() {
@@ -108,6 +152,32 @@ void ViewModel::set_ideal(bool on) {
 void ViewModel::set_stiffness(double k) {
   if (k == scene_.contact.stiffness) k = 0.0;
   if (k != stiffness_) rebuild_keeping_state(ideal_, k);
+}
+
+void ViewModel::set_particles(double diameter, double density,
+                              const std::function<void(const std::string&)>& notify) {
+  const ParticleSettings& p = opened_.particles;
+  const bool own = (diameter == 0.0 && density == 0.0) ||
+                   (diameter == p.diameter && density == p.density);
+  const Settings next = own ? opened_ : with_particles(opened_, diameter, density);
+  with_contact(next, ideal_, stiffness_);  // a stiffness the new step cannot take: refused here
+  const std::string saved = dir_ + "/next-start.state";
+  try {
+    Settings start = next;
+    prepare_packed_bed(start, notify);
+    Simulation first(start);
+    first.save_state(saved);  // nothing has changed until it is written over the old start
+  } catch (const InputError& e) {  // the domain cannot hold them, ...: said with what was asked
+    char what[96];
+    std::snprintf(what, sizeof what, "spheres of %.3g mm and %.4g kg/m^3: ",
+                  1000.0 * next.particles.diameter, next.particles.density);
+    throw InputError(what + std::string(e.what()));
+  }
+  std::filesystem::rename(saved, start_file_);
+  scene_ = next;
+  sim_ = build();
+  sim_->load_state(start_file_);
+  start_hash_ = sim_->state_hash();
 }
 
 double ViewModel::stiffness() const {
@@ -154,12 +224,27 @@ ViewSession::ViewSession(const Settings& scene, double settle, double average)
   next_sample_ = model_.sim().time() + sample_interval_;
 }
 
+void ViewSession::set_umf(const UmfEstimate& scene_umf, const std::string& shipped) {
+  scene_umf_ = umf_ = scene_umf;
+  umf_shipped_ = shipped;
+}
+
+void ViewSession::start_again() {
+  failed_velocity_ = -1.0;
+  steps_at_velocity_ = 0;
+  at_top_since_ = -1.0;
+  held_at_top_ = 0;
+  next_sample_ = model_.sim().time() + sample_interval_;
+  interval_overlap_ = 0.0;
+}
+
 double ViewSession::held_velocity() const {
   const GasSolver* g = model_.sim().gas();
   return g ? g->superficial_velocity() : 0.0;
 }
 
-void ViewSession::apply(const ViewCommand& c) {
+void ViewSession::apply(const ViewCommand& c,
+                        const std::function<void(const std::string&)>& notify) {
   using K = ViewCommand::Kind;
   const Simulation& sim = model_.sim();
   switch (c.kind) {
@@ -176,14 +261,37 @@ void ViewSession::apply(const ViewCommand& c) {
         u = safe_velocity_;
       model_.reset();
       if (model_.sim().gas() && u != held_velocity()) model_.set_velocity(u);
-      failed_velocity_ = -1.0;
-      steps_at_velocity_ = 0;
-      at_top_since_ = -1.0;
-      held_at_top_ = 0;
+      start_again();
       regime_.restart(model_.sim());  // tracking starts again with the bed
       curve_.clear(model_.sim().time(), held_velocity());
-      next_sample_ = model_.sim().time() + sample_interval_;
-      interval_overlap_ = 0.0;
+      break;
+    }
+    case K::particles: {
+      const double u = held_velocity();
+      const double old_d = model_.scene().particles.diameter;
+      const double old_rho = model_.scene().particles.density;
+      model_.set_particles(c.value, c.density, notify);
+      if (model_.sim().gas() && u != held_velocity()) model_.set_velocity(u);
+      start_again();
+      safe_velocity_ = -1.0;  // of other particles
+      const Settings& now = model_.scene();
+      regime_ = RegimeWatch(now, model_.sim());
+      curve_.clear(model_.sim().time(), held_velocity(), check_scene(now).figures.weight_per_area);
+      if (now.particles.diameter != old_d || now.particles.density != old_rho) {
+        if (!(scene_umf_.umf > 0.0) || !now.gas.enabled)
+          umf_ = scene_umf_;
+        else if (now.particles.diameter == model_.opened_scene().particles.diameter &&
+                 now.particles.density == model_.opened_scene().particles.density)
+          umf_ = scene_umf_;
+        else
+          try {
+            umf_ = umf_for_particles(scene_umf_, model_.opened_scene(), now, notify, umf_shipped_);
+          } catch (const std::exception& e) {  // the bed runs; the presets wait for a U_mf
+            if (notify) notify(std::string("no U_mf for the new particles: ") + e.what());
+            umf_ = UmfEstimate{};
+          }
+        ++particles_changes_;
+      }
       break;
     }
     case K::velocity:

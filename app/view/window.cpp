@@ -75,9 +75,11 @@ Viewer::Viewer(ViewEngine& engine, ViewerOptions options)
   }
   if (look_.bubble_outlines) post({ViewCommand::Kind::bubbles, 1.0});
   look_.caption_band = true;
-  // The slider's range, fixed for the session (a range that followed the live value ran away
-  // under a held button): 2.5 U_mf, or beyond the scene's own velocity when that is higher.
+  // The slider's range, fixed while the particles are (a range that followed the live value ran
+  // away under a held button): 2.5 U_mf, or beyond the scene's own velocity when that is higher.
   velocity_top_ = static_cast<float>(std::max({2.5 * opt_.umf, 1.25 * opt_.scene_velocity, 1.0}));
+  diameter_edit_ = static_cast<float>(1000.0 * opt_.scene.particles.diameter);
+  density_edit_ = static_cast<float>(opt_.scene.particles.density);
   const ViewEngine::Options& eo = engine_.options();
   settle_edit_ = static_cast<float>(eo.settle);
   average_edit_ = static_cast<float>(eo.average);
@@ -151,6 +153,17 @@ void Viewer::take_newest() {
   keep_last(plot_dp_, kPlotPoints);
   keep_last(plot_overlap_, kPlotPoints);
   status_ = st;
+  if (st.particles_changes != particles_changes_) {
+    // New particles: their U_mf (the presets, the slider's tick and range) and their step.
+    particles_changes_ = st.particles_changes;
+    opt_.umf = st.umf;
+    opt_.umf_cached = st.umf_cached;
+    opt_.umf_method = st.umf_method;
+    opt_.umf_method_short = st.umf_method_short;
+    opt_.dt = st.dt;
+    velocity_top_ =
+        static_cast<float>(std::max({2.5 * opt_.umf, 1.25 * opt_.scene_velocity, 1.0}));
+  }
   take_beside();
   // The regime in words over the bed (from the last second's bubbles; gas beds only).
   look_.bed_label = st.bubbles && snap_ && snap_->has_gas() ? regime_words(*st.bubbles) : "";
@@ -472,6 +485,16 @@ bool Viewer::ideal(bool on) {
 
 bool Viewer::stiffness(double k) {
   post({ViewCommand::Kind::stiffness, k});
+  script_waiting_engine_ = true;
+  return true;
+}
+
+bool Viewer::particles(double diameter, double density) {
+  if (diameter > 0.0) {
+    diameter_edit_ = static_cast<float>(1000.0 * diameter);
+    density_edit_ = static_cast<float>(density);
+  }
+  post({ViewCommand::Kind::particles, diameter, density});
   script_waiting_engine_ = true;
   return true;
 }

@@ -106,6 +106,7 @@ class Viewer : private ScriptTarget {
   void draw_curve_section();
   void draw_bed_section();
   void draw_look_section();
+  void draw_particles_section();
   void draw_plots();
   void draw_curve_plot(float height, bool for_a_class = false);
   void velocity_slider(const char* format);
@@ -151,6 +152,7 @@ class Viewer : private ScriptTarget {
   bool velocity(double m_per_s) override;
   bool ideal(bool on) override;
   bool stiffness(double k) override;
+  bool particles(double diameter, double density) override;
   bool settle(double s) override;
   bool average(double s) override;
   bool save_curve(const std::string& file) override;
@@ -201,6 +203,9 @@ class Viewer : private ScriptTarget {
   std::vector<std::pair<double, double>> trajectory_;  // m, of the tracked particle
   std::int64_t trajectory_step_ = -1;
   float settle_edit_ = 0.5f, average_edit_ = 1.0f;  // the panel's fields (s)
+  // The particles' fields (mm, kg/m^3), and the engine's changes of them taken so far.
+  float diameter_edit_ = 4.0f, density_edit_ = 2700.0f;
+  std::uint64_t particles_changes_ = 0;
 
   // A second bed beside the first, with its own engine thread: `--beside`, or the ideal twin the
   // panel started (own_twin_). Run, pause, step, reset, the gas and the live curve's times act on

@@ -120,6 +120,11 @@ bool read_umf_answer(const std::string& file, UmfEstimate& e) {
 }
 
 std::string UmfEstimate::method() const {
+  if (scaled_from > 0.0)
+    return format_number("the scene's own U_mf (%.3f m/s, its particles) scaled by ", scaled_from) +
+           format_number("%.3f, the ratio of the fixed-bed force balances of the new particles' "
+                         "packed bed and the scene's (not measured on a sweep)",
+                         scale);
   return from_sweep
              ? "the decreasing branch of this scene's own sweep (" + std::to_string(u.size()) +
                    " velocities, 2 s each), where the defluidized bed's line meets the plateau, "
@@ -129,6 +134,7 @@ std::string UmfEstimate::method() const {
 }
 
 std::string UmfEstimate::method_short() const {
+  if (scaled_from > 0.0) return "estimated from the scene's for the new particles";
   return from_sweep ? "measured on the way down, as Fig. 6 is" : "the packed bed held still";
 }
 
@@ -208,6 +214,34 @@ UmfEstimate estimate_umf(const Settings& scene,
           << "\n";
     out << "# " << e.method() << "\n";
   });
+  return e;
+}
+
+UmfEstimate umf_for_particles(const UmfEstimate& measured, const Settings& scene,
+                              const Settings& changed,
+                              const std::function<void(const std::string&)>& notify,
+                              const std::string& shipped) {
+  namespace fs = std::filesystem;
+  if (!changed.gas.enabled)
+    throw InputError("the scene has no gas: it has no minimum fluidization velocity");
+  UmfEstimate e;
+  e.wen_yu = wen_yu_umf(changed.particles.diameter, changed.particles.density,
+                        changed.gas.density, changed.gas.viscosity, changed.physics.gravity);
+  if (!(e.wen_yu > 0.0))
+    throw InputError("the particles are no heavier than the gas: no minimum fluidization");
+  const std::string name = umf_cache_name(changed);
+  e.cache_file = (fs::path(cache_dir()) / name).string();
+  if (read_umf_answer(e.cache_file, e)) return e;
+  if (!shipped.empty() && read_umf_answer((fs::path(shipped) / name).string(), e)) return e;
+  const double wen_yu_scene = wen_yu_umf(scene.particles.diameter, scene.particles.density,
+                                         scene.gas.density, scene.gas.viscosity,
+                                         scene.physics.gravity);
+  const double balance_scene = force_balance_umf(scene, wen_yu_scene, e.evaluations, notify);
+  const double balance_changed = force_balance_umf(changed, e.wen_yu, e.evaluations, notify);
+  e.scale = balance_changed / balance_scene;
+  e.scaled_from = measured.umf;
+  e.umf = measured.umf * e.scale;
+  e.cache_file.clear();  // an estimate, not kept: the cache holds measured answers
   return e;
 }
 

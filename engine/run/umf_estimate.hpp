@@ -27,6 +27,9 @@ struct UmfEstimate {
   bool from_sweep = false;        // false: the fixed-bed force balance stood in
   std::string cache_file;         // where it is (or was read from)
   std::vector<double> u, dp;      // the decreasing branch (m/s, Pa), when from_sweep
+  // Scaled from another scene's (umf_for_particles): that scene's U_mf (m/s; 0: not scaled) and
+  // the ratio of the two force balances it was multiplied by.
+  double scaled_from = 0.0, scale = 1.0;
   // How it was measured: one line for a panel, and a few words for a class.
   std::string method() const;
   std::string method_short() const;
@@ -51,6 +54,16 @@ UmfEstimate estimate_umf(const Settings& scene,
 // An answer file as estimate_umf writes it, read into e (U_mf, how, the branch; from_cache and
 // cache_file set); false when the file is missing or not such an answer.
 bool read_umf_answer(const std::string& file, UmfEstimate& e);
+// U_mf of `changed`, the bed of `scene` with other particles (the viewer's live change), from
+// `measured`, `scene`'s own estimate: a measured answer for `changed` in the cache (or in
+// `shipped`) when there is one, else measured.umf times the ratio of the two beds' fixed-bed
+// force balances (the model's drag on each packed bed, a few seconds of runs). The balance is 13 %
+// above the sweep on the paper's bed, for its packed bed is denser than a defluidized one; the
+// ratio of two such beds cancels that to first order. InputError as estimate_umf.
+UmfEstimate umf_for_particles(const UmfEstimate& measured, const Settings& scene,
+                              const Settings& changed,
+                              const std::function<void(const std::string&)>& notify = {},
+                              const std::string& shipped = "");
 // The file name under which estimate_umf keeps `scene`'s answer (umf-HASH.txt); packs the
 // scene's bed first when it starts from one not yet cached (the name holds the packing's).
 std::string umf_cache_name(const Settings& scene);

@@ -246,6 +246,36 @@ TEST(ViewCommand, WithoutADisplayWritesHeadlessFrames) {
   EXPECT_EQ(p.w, 320);
 }
 
+// `view SCENE --umf`: the scene's U_mf and how it was found, then exit 0 without a window; the
+// teaching bed's answer is the one shipped with the program (its packed bed is the fixture's). A
+// bed without gas has none: one line, status 2.
+TEST(ViewCommand, UmfPrintsTheScenesAnswerAndExits) {
+  const auto dir = fresh_dir("umf");
+  const ViewRun r = run_view(dir, std::string(FLUIDBED_ASSET_DIR) + "/scenes/teaching.toml --umf");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::size_t at = r.output.find("fluidbed view: U_mf = ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const double umf = std::stod(r.output.substr(at + 22));
+  EXPECT_NE(r.output.find("decreasing branch"), std::string::npos) << r.output;
+  const std::size_t file_at = r.output.find("cached: ");
+  ASSERT_NE(file_at, std::string::npos) << r.output;
+  const std::string file =
+      r.output.substr(file_at + 8, r.output.find(')', file_at) - file_at - 8);
+  EXPECT_EQ(std::filesystem::path(file).parent_path(),
+            std::filesystem::path(FLUIDBED_ASSET_DIR) / "umf")
+      << file;
+  std::ifstream in(file);
+  std::string word;
+  double shipped = 0.0;
+  in >> word >> shipped;
+  EXPECT_EQ(word, "umf_m_s") << file;
+  EXPECT_NEAR(umf, shipped, 5e-4) << r.output;  // printed to 3 decimals
+  const ViewRun none = run_view(dir, std::string(FLUIDBED_ASSET_DIR) + "/scenes/drop.toml --umf");
+  EXPECT_EQ(none.status, 2) << none.output;
+  EXPECT_NE(none.output.find("no gas"), std::string::npos) << none.output;
+  EXPECT_EQ(std::count(none.output.begin(), none.output.end(), '\n'), 1) << none.output;
+}
+
 TEST(ViewCommand, BadInputIsOneLineAndStatusTwo) {
   const auto dir = fresh_dir("bad");
   const std::string scene = written_file(dir / "small.toml", kViewTestScene);

@@ -538,6 +538,92 @@ TEST(ViewEngine, StiffnessKeepsTheStateAndRefusesAStepTooLong) {
               1e-15);
 }
 
+// Other spheres, by hand: the mass ratio r = (rho / rho_0) (d / d_0)^3 = 2 x (1/2)^3 = 1/4, so
+// the linear law's step and damping both scale by sqrt(r) = 1/2; Hertz's step by
+// r^(2/5) (d / d_0)^(-1/5) = 0.25^0.4 x 2^0.2 = 0.65975; the gas step (2 particle steps) stays
+// the scene's at most: 4 and 3 particle steps in it; the monolayer stays one sphere thick; a
+// lattice start's fill height scales with the area, 1/4. Heavier spheres (r = 16): the step
+// would be 4 dt, more than the gas step; it is the gas step, one particle step to it.
+TEST(ViewSession, NewParticlesTakeTheScenesStepRule) {
+  Settings s = testing::view_test_settings();
+  s.particles.packing_scene = "elsewhere.toml";
+  const Settings p = app::with_particles(s, 0.002, 5400.0);
+  EXPECT_EQ(p.particles.count, s.particles.count);
+  EXPECT_EQ(p.particles.diameter, 0.002);
+  EXPECT_EQ(p.particles.density, 5400.0);
+  EXPECT_NEAR(p.time.dt, 0.5 * s.time.dt, 1e-20);
+  EXPECT_NEAR(p.contact.damping, 0.5 * s.contact.damping, 1e-15);
+  EXPECT_EQ(s.coupling.particle_steps_per_gas_step, 2);
+  EXPECT_EQ(p.coupling.particle_steps_per_gas_step, 4);
+  EXPECT_EQ(p.contact.stiffness, s.contact.stiffness);
+  EXPECT_EQ(p.domain.thickness, 0.002);
+  EXPECT_NEAR(p.particles.fill_height, 0.25 * s.particles.fill_height, 1e-15);
+  EXPECT_TRUE(p.particles.packing_scene.empty());  // that scene packs the old spheres
+  Settings hm = s;
+  hm.contact.law = ContactLaw::HertzMindlin;
+  const Settings q = app::with_particles(hm, 0.002, 5400.0);
+  EXPECT_NEAR(q.time.dt, 0.65975 * s.time.dt, 1e-5 * s.time.dt);
+  EXPECT_EQ(q.contact.damping, s.contact.damping);  // Hertz-Mindlin's is the restitution's
+  EXPECT_EQ(q.coupling.particle_steps_per_gas_step, 3);
+  const Settings heavy = app::with_particles(s, 0.004, 16.0 * 2700.0);
+  EXPECT_EQ(heavy.time.dt, 2.0 * s.time.dt);
+  EXPECT_EQ(heavy.coupling.particle_steps_per_gas_step, 1);
+  // Refused: no size, no density, spheres wider than a thick slab's walls are apart.
+  EXPECT_THROW(app::with_particles(s, 0.0, 2700.0), InputError);
+  EXPECT_THROW(app::with_particles(s, 0.003, -1.0), InputError);
+  Settings slab = s;
+  slab.domain.thickness = 0.012;
+  EXPECT_EQ(app::with_particles(slab, 0.003, 2700.0).domain.thickness, 0.012);  // kept
+  try {
+    app::with_particles(slab, 0.02, 2700.0);
+    ADD_FAILURE() << "a 20 mm sphere between walls 12 mm apart was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("spheres of 20 mm"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("do not fit"), std::string::npos) << e.what();
+  }
+}
+
+// The engine's particles command: the count and the held velocity kept, the time back to 0, the
+// new step; a refused size leaves the bed as it was; 0 and 0 give the scene's spheres back.
+TEST(ViewEngine, NewParticlesKeepTheCountAndTheVelocity) {
+  const Settings s = testing::view_test_settings();
+  ViewEngine e(s, paused());
+  e.start();
+  post_and_wait(e, {K::velocity, 1.5});
+  post_and_wait(e, {K::step, 20.0});
+  const std::uint64_t generation = e.status().generation;
+  post_and_wait(e, {K::particles, 0.003, 2500.0});
+  app::EngineStatus st = e.status();
+  EXPECT_TRUE(st.refusal.empty()) << st.refusal;
+  EXPECT_TRUE(st.error.empty()) << st.error;
+  EXPECT_EQ(st.particles, 100u);
+  EXPECT_EQ(st.particle_diameter, 0.003);
+  EXPECT_EQ(st.particle_density, 2500.0);
+  EXPECT_EQ(st.steps, 0);
+  EXPECT_EQ(st.superficial_velocity, 1.5);
+  EXPECT_GT(st.generation, generation);  // the plots start again
+  EXPECT_EQ(st.particles_changes, 1u);
+  EXPECT_NEAR(st.dt, s.time.dt * std::sqrt(2500.0 / 2700.0 * 0.421875), 1e-18);  // 2 fit
+  EXPECT_TRUE(st.busy.empty());
+  auto snap = e.snapshots().latest();
+  ASSERT_NE(snap, nullptr);
+  EXPECT_DOUBLE_EQ(snap->radius.at(0), 0.0015);
+  post_and_wait(e, {K::step, 10.0});
+  EXPECT_EQ(e.status().steps, 10);
+  post_and_wait(e, {K::particles, 0.02, 2500.0});
+  st = e.status();
+  EXPECT_NE(st.refusal.find("spheres of 20 mm and 2500 kg/m^3: particles.count: only 93 fit"),
+            std::string::npos)
+      << st.refusal;
+  EXPECT_EQ(st.particle_diameter, 0.003);
+  EXPECT_EQ(st.steps, 10);
+  post_and_wait(e, {K::particles, 0.0, 0.0});
+  st = e.status();
+  EXPECT_EQ(st.particle_diameter, s.particles.diameter);
+  EXPECT_EQ(st.dt, s.time.dt);
+  EXPECT_EQ(st.particles_changes, 2u);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The view script.
 
@@ -598,6 +684,15 @@ TEST(ViewScript, NamesTheLineAndTheProblem) {
   EXPECT_EQ(app::parse_view_script("colour depth\n", "d.txt").lines.at(0).text, "depth");
   EXPECT_NE(message("quit now").find("unexpected 'now'"), std::string::npos);
   EXPECT_NE(message("step 0").find("whole count"), std::string::npos);
+  EXPECT_NE(message("particles 0.003").find("density"), std::string::npos);
+  EXPECT_NE(message("particles -1 2700").find("diameter must be > 0"), std::string::npos);
+  const auto p = app::parse_view_script("particles 0.003 2500\nparticles scene\n", "p.txt").lines;
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0].kind, app::ScriptLine::Kind::particles);
+  EXPECT_EQ(p[0].number, 0.003);
+  EXPECT_EQ(p[0].density, 2500.0);
+  EXPECT_EQ(p[1].number, 0.0);
+  EXPECT_EQ(p[1].density, 0.0);
   EXPECT_THROW(app::load_view_script("/nonexistent/script.txt"), InputError);
 }
 
