@@ -130,6 +130,17 @@ bool ViewEngine::wait_until_stopped(std::chrono::milliseconds timeout) const {
   });
 }
 
+// A new start (reset, new particles): the plots start again, pending steps and a failure go.
+void ViewEngine::started_again() {
+  ++generation_;
+  steps_left_ = 0;
+  until_step_ = -1;
+  error_.clear();
+  error_plain_.clear();
+  std::lock_guard lock(status_mutex_);
+  samples_.clear();
+}
+
 // The stepping commands are the engine's; the rest change the session.
 void ViewEngine::apply(const ViewCommand& c) {
   using K = ViewCommand::Kind;
@@ -153,15 +164,7 @@ void ViewEngine::apply(const ViewCommand& c) {
     }
     case K::reset:  // the run/pause switch stays as it is, after a failure too
       session_.apply(c);
-      ++generation_;
-      steps_left_ = 0;
-      until_step_ = -1;
-      error_.clear();
-      error_plain_.clear();
-      {
-        std::lock_guard lock(status_mutex_);
-        samples_.clear();
-      }
+      started_again();
       break;
     case K::particles: {
       // Seconds of work (a packing, the force balances): the panel says so meanwhile.
@@ -182,15 +185,7 @@ void ViewEngine::apply(const ViewCommand& c) {
         throw;
       }
       say("");
-      ++generation_;  // a new bed: the plots start again
-      steps_left_ = 0;
-      until_step_ = -1;
-      error_.clear();
-      error_plain_.clear();
-      {
-        std::lock_guard lock(status_mutex_);
-        samples_.clear();
-      }
+      started_again();
       break;
     }
     default:

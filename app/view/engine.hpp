@@ -118,6 +118,7 @@ class ViewEngine {
  private:
   void loop();
   void apply(const ViewCommand& c);
+  void started_again();
   void publish();
   void measure_speed(bool stopping);
   void stopped();  // the engine just stopped stepping: publish the state and its hash

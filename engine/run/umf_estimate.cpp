@@ -25,7 +25,7 @@ namespace fluidbed {
 namespace {
 
 constexpr double kSteadyTime = 0.03;  // s of inflow: hundreds of the gas's response times
-
+constexpr double kRunTime = 2.0, kAveraging = 1.0;  // s: as the teaching study's branch
 }  // namespace
 
 Settings fixed_bed_settings(const Settings& scene,
@@ -92,8 +92,6 @@ Settings umf_scene(const Settings& scene) {
   return s;
 }
 
-constexpr double kRunTime = 2.0, kAveraging = 1.0;  // s: as the teaching study's branch
-
 }  // namespace
 
 bool read_umf_answer(const std::string& file, UmfEstimate& e) {
@@ -127,7 +125,9 @@ std::string UmfEstimate::method() const {
                          scale);
   return from_sweep
              ? "the decreasing branch of this scene's own sweep (" + std::to_string(u.size()) +
-                   " velocities, 2 s each), where the defluidized bed's line meets the plateau, "
+                   format_number(" velocities, %g s each), where the defluidized bed's line meets "
+                                 "the plateau, ",
+                                 kRunTime) +
                    "as `fluidbed sweep` finds it"
              : "fixed-bed force balance: the packed bed held still, uniform inflow, fluid force "
                "= weight (the sweep's way down gave none)";
@@ -152,23 +152,35 @@ std::string umf_cache_name(const Settings& scene) {
   return name;
 }
 
-UmfEstimate estimate_umf(const Settings& scene,
-                         const std::function<void(const std::string&)>& notify,
-                         const std::string& shipped) {
+namespace {
+
+// Wen and Yu's U_mf and the cache file's name into e (InputError for a bed without one); true
+// when a measured answer was found there or in `shipped`.
+bool known_answer(const Settings& scene, const std::string& shipped, UmfEstimate& e) {
   namespace fs = std::filesystem;
   if (!scene.gas.enabled)
     throw InputError("the scene has no gas: it has no minimum fluidization velocity");
-  UmfEstimate e;
   e.wen_yu = wen_yu_umf(scene.particles.diameter, scene.particles.density, scene.gas.density,
                         scene.gas.viscosity, scene.physics.gravity);
   if (!(e.wen_yu > 0.0))
     throw InputError("the particles are no heavier than the gas: no minimum fluidization");
-  Settings s = umf_scene(scene);
-  prepare_packed_bed(s, notify);
   const std::string name = umf_cache_name(scene);
   e.cache_file = (fs::path(cache_dir()) / name).string();
-  if (read_umf_answer(e.cache_file, e)) return e;
-  if (!shipped.empty() && read_umf_answer((fs::path(shipped) / name).string(), e)) return e;
+  if (read_umf_answer(e.cache_file, e)) return true;
+  return !shipped.empty() && read_umf_answer((fs::path(shipped) / name).string(), e);
+}
+
+}  // namespace
+
+UmfEstimate estimate_umf(const Settings& scene,
+                         const std::function<void(const std::string&)>& notify,
+                         const std::string& shipped) {
+  namespace fs = std::filesystem;
+  UmfEstimate e;
+  Settings s = umf_scene(scene);
+  if (scene.gas.enabled) prepare_packed_bed(s, notify);  // said here, if it packs
+  if (known_answer(scene, shipped, e)) return e;
+  const std::string name = fs::path(e.cache_file).filename().string();
 
   const std::vector<double> velocities = decreasing_branch_velocities(scene);
   if (notify)
@@ -221,18 +233,8 @@ UmfEstimate umf_for_particles(const UmfEstimate& measured, const Settings& scene
                               const Settings& changed,
                               const std::function<void(const std::string&)>& notify,
                               const std::string& shipped) {
-  namespace fs = std::filesystem;
-  if (!changed.gas.enabled)
-    throw InputError("the scene has no gas: it has no minimum fluidization velocity");
   UmfEstimate e;
-  e.wen_yu = wen_yu_umf(changed.particles.diameter, changed.particles.density,
-                        changed.gas.density, changed.gas.viscosity, changed.physics.gravity);
-  if (!(e.wen_yu > 0.0))
-    throw InputError("the particles are no heavier than the gas: no minimum fluidization");
-  const std::string name = umf_cache_name(changed);
-  e.cache_file = (fs::path(cache_dir()) / name).string();
-  if (read_umf_answer(e.cache_file, e)) return e;
-  if (!shipped.empty() && read_umf_answer((fs::path(shipped) / name).string(), e)) return e;
+  if (known_answer(changed, shipped, e)) return e;
   const double wen_yu_scene = wen_yu_umf(scene.particles.diameter, scene.particles.density,
                                          scene.gas.density, scene.gas.viscosity,
                                          scene.physics.gravity);
