@@ -1,0 +1,88 @@
+// The pressure correction's cost against the grid's size (issue 37, item 2: a solver of linear
+// cost is wanted where today's banded factorization grows faster than the grid). Grids of the
+// paper's shape, three cells high per cell wide, from 675 cells (15 x 45, the paper's bed) to
+// 67,500 (150 x 450): per solve with the factorization kept (what most SIMPLE iterations pay),
+// and per refactorization (paid when a coefficient has moved by more than
+// gas.preconditioner_refresh). Counters per cell, so that a cost growing with the grid shows as
+// a growing number. The coefficients are a bed's: 1 +- 20 % from cell to cell (the porosity's
+// variation), the kept factorization made from coefficients 5 % away (a refresh of 0.1 keeps
+// factorizations up to 10 % away), the right-hand side a smooth field with a jet-like peak.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "cfd/pressure_solver.hpp"
+
+namespace fluidbed {
+namespace {
+
+// Deterministic coefficients: 1 + 0.2 sin-like pattern, shifted by `shift` (relative).
+void fill(PressureSolver& p, int nx, int ny, double shift) {
+  auto& cu = p.coefficients_u();
+  auto& cv = p.coefficients_v();
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i <= nx; ++i)
+      cu[static_cast<std::size_t>(j * (nx + 1) + i)] =
+          (i == 0 || i == nx) ? 0.0 : (1.0 + 0.2 * std::sin(0.7 * i + 1.3 * j)) * (1.0 + shift);
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      cv[static_cast<std::size_t>(j * nx + i)] =
+          j == 0 ? 0.0 : (1.0 + 0.2 * std::cos(1.1 * i + 0.5 * j)) * (1.0 - shift);
+}
+
+std::vector<double> rhs(int nx, int ny) {
+  std::vector<double> b(static_cast<std::size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double x = (i + 0.5) / nx - 0.5, y = (j + 0.5) / ny;
+      b[static_cast<std::size_t>(j * nx + i)] = std::exp(-200.0 * x * x) * (1.0 - y) + 0.1 * y;
+    }
+  return b;
+}
+
+void BM_PressureSolveKept(benchmark::State& state) {
+  const int nx = static_cast<int>(state.range(0)), ny = 3 * nx;
+  PressureSolver p(nx, ny);
+  fill(p, nx, ny, 0.05);
+  p.update_preconditioner(0.0);  // factorized 5 % away from what is solved
+  fill(p, nx, ny, 0.0);
+  const std::vector<double> b = rhs(nx, ny);
+  std::vector<double> x(b.size());
+  std::int64_t iterations = 0;
+  for (auto _ : state) {
+    const PressureSolveReport r = p.solve(b.data(), x.data(), 1e-3, 0.0, 200);
+    iterations += r.iterations;
+    benchmark::DoNotOptimize(x.data());
+  }
+  const double cells = static_cast<double>(nx) * ny;
+  state.counters["ns_per_cell"] = benchmark::Counter(
+      cells * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
+  state.counters["pcg_iterations"] =
+      static_cast<double>(iterations) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_PressureSolveKept)->Arg(15)->Arg(30)->Arg(50)->Arg(90)->Arg(150)
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_PressureRefactorize(benchmark::State& state) {
+  const int nx = static_cast<int>(state.range(0)), ny = 3 * nx;
+  PressureSolver p(nx, ny);
+  double shift = 0.0;
+  for (auto _ : state) {
+    shift = shift == 0.0 ? 0.05 : 0.0;
+    fill(p, nx, ny, shift);
+    benchmark::DoNotOptimize(p.update_preconditioner(0.0));
+  }
+  const double cells = static_cast<double>(nx) * ny;
+  state.counters["ns_per_cell"] = benchmark::Counter(
+      cells * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
+  state.counters["pcg_iterations"] = 0.0;
+}
+BENCHMARK(BM_PressureRefactorize)->Arg(15)->Arg(30)->Arg(50)->Arg(90)->Arg(150)
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace fluidbed
