@@ -42,9 +42,14 @@ std::vector<double> rhs(int nx, int ny) {
   return b;
 }
 
-void BM_PressureSolveKept(benchmark::State& state) {
-  const int nx = static_cast<int>(state.range(0)), ny = 3 * nx;
-  PressureSolver p(nx, ny);
+// Arguments: the grid's width in cells (3 times as many rows), or width and height.
+int rows(const benchmark::State& state) {
+  return state.range(1) > 0 ? static_cast<int>(state.range(1)) : 3 * static_cast<int>(state.range(0));
+}
+
+void solve_kept(benchmark::State& state, PressureMethod method) {
+  const int nx = static_cast<int>(state.range(0)), ny = rows(state);
+  PressureSolver p(nx, ny, method);
   fill(p, nx, ny, 0.05);
   p.update_preconditioner(0.0);  // factorized 5 % away from what is solved
   fill(p, nx, ny, 0.0);
@@ -63,12 +68,24 @@ void BM_PressureSolveKept(benchmark::State& state) {
   state.counters["pcg_iterations"] =
       static_cast<double>(iterations) / static_cast<double>(state.iterations());
 }
-BENCHMARK(BM_PressureSolveKept)->Arg(15)->Arg(30)->Arg(50)->Arg(90)->Arg(150)
+
+void BM_PressureSolveKept(benchmark::State& state) {
+  solve_kept(state, PressureMethod::banded);
+}
+BENCHMARK(BM_PressureSolveKept)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({65, 0})->Args({80, 0})->Args({90, 0})->Args({150, 0})
+    ->Args({150, 45})->Args({500, 45})->Args({1500, 45})
     ->Unit(benchmark::kMicrosecond);
 
-void BM_PressureRefactorize(benchmark::State& state) {
-  const int nx = static_cast<int>(state.range(0)), ny = 3 * nx;
-  PressureSolver p(nx, ny);
+void BM_PressureSolveMultigrid(benchmark::State& state) {
+  solve_kept(state, PressureMethod::multigrid);
+}
+BENCHMARK(BM_PressureSolveMultigrid)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({65, 0})->Args({80, 0})->Args({90, 0})->Args({150, 0})
+    ->Args({150, 45})->Args({500, 45})->Args({1500, 45})
+    ->Unit(benchmark::kMicrosecond);
+
+void refactorize(benchmark::State& state, PressureMethod method) {
+  const int nx = static_cast<int>(state.range(0)), ny = rows(state);
+  PressureSolver p(nx, ny, method);
   double shift = 0.0;
   for (auto _ : state) {
     shift = shift == 0.0 ? 0.05 : 0.0;
@@ -81,7 +98,19 @@ void BM_PressureRefactorize(benchmark::State& state) {
       benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
   state.counters["pcg_iterations"] = 0.0;
 }
-BENCHMARK(BM_PressureRefactorize)->Arg(15)->Arg(30)->Arg(50)->Arg(90)->Arg(150)
+
+void BM_PressureRefactorize(benchmark::State& state) {
+  refactorize(state, PressureMethod::banded);
+}
+BENCHMARK(BM_PressureRefactorize)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({65, 0})->Args({80, 0})->Args({90, 0})->Args({150, 0})
+    ->Args({150, 45})->Args({500, 45})->Args({1500, 45})
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_PressureRebuildMultigrid(benchmark::State& state) {
+  refactorize(state, PressureMethod::multigrid);
+}
+BENCHMARK(BM_PressureRebuildMultigrid)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({65, 0})->Args({80, 0})->Args({90, 0})->Args({150, 0})
+    ->Args({150, 45})->Args({500, 45})->Args({1500, 45})
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -99,7 +99,7 @@ GasSolver::GasSolver(const GasGrid& grid, const GasParams& params)
       dy_(grid.dy()),
       dz_(grid.depth),
       vol_(grid.cell_volume()),
-      pressure_(grid.nx, grid.ny) {
+      pressure_(grid.nx, grid.ny, params.pressure_method) {
   const std::size_t nu = static_cast<std::size_t>(nx_ + 1) * ny_;
   const std::size_t nv = static_cast<std::size_t>(nx_) * (ny_ + 1);
   const std::size_t nc = static_cast<std::size_t>(nx_) * ny_;

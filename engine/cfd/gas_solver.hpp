@@ -78,6 +78,9 @@ struct GasParams {
   // The PCG preconditioner (an exact factorization of an earlier matrix) is rebuilt when a face
   // coefficient has moved by more than this fraction since it was built.
   double preconditioner_refresh = 2e-3;
+  // The banded factorization or the multigrid V-cycle: chosen by the grid's size (automatic;
+  // PressureSolver says where), not a scene key; tests and benchmarks may name one.
+  PressureMethod pressure_method = PressureMethod::automatic;
   // Where the half of a wall cell's F that falls on a fixed-velocity face (side walls, bottom)
   // goes. true: to the cell's other (solved) face, so the gas receives exactly sum F_c dV; but in
   // a uniform bed the face above the bottom row then carries 1.5 F, so grad p in the bottom row

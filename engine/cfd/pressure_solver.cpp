@@ -33,10 +33,12 @@ bool close(const std::vector<double>& now, const std::vector<double>& then, doub
 
 }  // namespace
 
-PressureSolver::PressureSolver(int nx, int ny)
+PressureSolver::PressureSolver(int nx, int ny, PressureMethod method)
     : nx_(nx),
       ny_(ny),
       n_(nx * ny),
+      multigrid_(method == PressureMethod::multigrid ||
+                 (method == PressureMethod::automatic && std::min(nx, ny) > kMultigridBand)),
       cu_(static_cast<std::size_t>(nx + 1) * ny, 0.0),
       cv_(static_cast<std::size_t>(nx) * (ny + 1), 0.0),
       fu_(cu_.size(), 0.0),
@@ -44,8 +46,8 @@ PressureSolver::PressureSolver(int nx, int ny)
       diag_(n_, 0.0),
       east_(n_, 0.0),
       north_(n_, 0.0),
-      transposed_(nx > ny),
-      ldlt_(nx > ny ? ny : nx, nx > ny ? nx : ny),
+      transposed_(!multigrid_ && nx > ny),
+      ldlt_(multigrid_ ? 1 : (nx > ny ? ny : nx), multigrid_ ? 1 : (nx > ny ? nx : ny)),
       r_(n_, 0.0),
       z_(n_, 0.0),
       p_(n_, 0.0),
@@ -72,7 +74,9 @@ void PressureSolver::refactorize() {
   ++factorizations_;
   factored_ = true;
   bool ok = false;
-  if (transposed_) {
+  if (multigrid_) {
+    ok = mg_.build(nx_, ny_, diag_.data(), east_.data(), north_.data());
+  } else if (transposed_) {
     // Cell (i, j) is c' = i ny + j: its "east" neighbour in the band is (i, j + 1) (the north
     // coupling), its "north" one is (i + 1, j) (the east coupling).
     t_diag_.resize(n_);
@@ -140,6 +144,10 @@ void PressureSolver::multiply(const double* x, double* y) const {
 }
 
 void PressureSolver::precondition(const double* r, double* z) {
+  if (multigrid_) {
+    mg_.apply(r, z);
+    return;
+  }
   if (!transposed_) {
     ldlt_.solve(r, z);
     return;

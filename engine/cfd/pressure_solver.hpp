@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cfd/banded_ldlt.hpp"
+#include "cfd/multigrid.hpp"
 
 namespace fluidbed {
 
@@ -19,9 +20,22 @@ struct PressureSolveReport {
   bool converged = false;
 };
 
+// The preconditioner: the banded factorization (exact for the matrix it was made from; its cost
+// per cell grows with the band's width, the grid's short side) or a multigrid V-cycle
+// (cfd/multigrid.hpp; more PCG iterations, a cost per cell that grows slowly). `automatic`
+// takes multigrid where the short side passes kMultigridBand cells. Measured with
+// bench_pressure.cpp (a solve to 1e-3 with the factorization kept, ns per cell, banded against
+// multigrid): 65 x 195, 119 against 225; 80 x 240, 309 against 232; 150 x 450, 805 against 322;
+// but a wide grid of 45 rows keeps a narrow band: 1500 x 45 (the 240,000-sphere bed), 205
+// against 374. Every shipped scene's grid is banded (the paper's 15 x 45, van Wachem's finest 36
+// x 200). The others are for tests and benchmarks.
+enum class PressureMethod { automatic, banded, multigrid };
+
 class PressureSolver {
  public:
-  PressureSolver(int nx, int ny);
+  static constexpr int kMultigridBand = 72;
+  PressureSolver(int nx, int ny, PressureMethod method = PressureMethod::automatic);
+  bool multigrid() const { return multigrid_; }
 
   // Face coefficients c_f in m^3/(s Pa): the change of the volume flow through face f per unit
   // pressure-correction difference across it. cu: vertical faces, index j * (nx + 1) + i (the
@@ -55,6 +69,7 @@ class PressureSolver {
   void refactorize();
 
   int nx_, ny_, n_;
+  bool multigrid_;
   std::vector<double> cu_, cv_;              // current coefficients
   std::vector<double> fu_, fv_;              // coefficients of the factorization
   std::vector<double> diag_, east_, north_;  // the five-point matrix (current or factored)
@@ -62,7 +77,8 @@ class PressureSolver {
   // (many jets side by side) is factored with its cells numbered column by column, so the cost
   // per cell stays 2 min(nx, ny) and grows with the bed like the particle count.
   bool transposed_ = false;
-  BandedLdlt ldlt_;
+  BandedLdlt ldlt_;  // 1 x 1 when the multigrid preconditions
+  MultigridPreconditioner mg_;
   std::vector<double> t_diag_, t_east_, t_north_, t_r_;  // the transposed copies (when used)
   std::vector<double> r_, z_, p_, q_;  // PCG work vectors
 
