@@ -48,7 +48,12 @@ void Viewer::toggle_twin() {
     say(std::string("The ideal twin could not start: ") + e.what());
     return;
   }
-  // Both from the packed bed at the velocity the slider holds, the twin ideal, both running.
+  // Both from the packed bed at the velocity the slider holds, the twin ideal, both running; the
+  // twin of the particles in use (the panel may have changed them).
+  if (status_.particle_diameter != opt_.scene.particles.diameter ||
+      status_.particle_density != opt_.scene.particles.density)
+    own_twin_->post(
+        {ViewCommand::Kind::particles, status_.particle_diameter, status_.particle_density});
   own_twin_->post({ViewCommand::Kind::velocity, status_.superficial_velocity});
   own_twin_->post({ViewCommand::Kind::ideal, 1.0});
   own_twin_->start();
