@@ -14,7 +14,8 @@
 //   BubbleDetect              - connected regions, bed surface, jet cavity, centroids;
 //   BubbleFrame               - one whole frame: void fraction, detection, tracking, summary
 //                               (the hole positions alternate so that tracking has work).
-// Counters: s_per_particle (CPU time per sphere, printed with an SI prefix: 290n is 290 ns);
+// Counter: s_per_unit, labelled "per particle" (CPU time per sphere, printed with an SI prefix:
+// 290n is 290 ns);
 // the time per frame is the benchmark's own.
 #include <benchmark/benchmark.h>
 
@@ -28,6 +29,7 @@
 #include "analysis/void_fraction.hpp"
 #include "core/random.hpp"
 #include "coupling/porosity.hpp"
+#include "per_unit.hpp"
 
 namespace fluidbed {
 namespace {
@@ -66,10 +68,8 @@ Particles bed_with_holes(double shift = 0.0) {
   return p;
 }
 
-void per_particle(benchmark::State& state, std::size_t n) {
-  state.counters["s_per_particle"] =
-      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
-                                                     benchmark::Counter::kInvert);
+void per_particle(benchmark::State& state, std::size_t n, const std::string& more = "") {
+  time_per_unit(state, static_cast<double>(n), "per particle" + more);
 }
 
 void BM_BubbleVoidFraction(benchmark::State& state) {
@@ -139,8 +139,7 @@ void BM_BubbleDetect(benchmark::State& state) {
     detector.detect(f, frame);
     benchmark::DoNotOptimize(frame.regions.data());
   }
-  state.SetLabel(std::to_string(frame.regions.size()) + " regions");
-  per_particle(state, p.size());
+  per_particle(state, p.size(), "; " + std::to_string(frame.regions.size()) + " regions");
 }
 BENCHMARK(BM_BubbleDetect)->Unit(benchmark::kMicrosecond);
 

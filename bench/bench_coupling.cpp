@@ -1,14 +1,19 @@
 // Kernels of the coupling and the gas: the porosity share of one particle (eq 22; inside a cell,
 // across a face, across a corner) and one SIMPLE step of the gas on the paper's 15 x 45 grid
-// through the porosity of a settled bed, with the jet at 2.8 m/s.
+// through the porosity of a settled bed, with the jet at 2.8 m/s; then the gas step against the
+// grid's size.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <vector>
 
 #include "cfd/gas_grid.hpp"
 #include "cfd/gas_solver.hpp"
 #include "coupling/porosity.hpp"
+#include "per_unit.hpp"
 #include "scene/settings.hpp"
 #include "sim/simulation.hpp"
 
@@ -116,6 +121,59 @@ void BM_GasStep(benchmark::State& state) {
   state.SetLabel(label);
 }
 BENCHMARK(BM_GasStep)->Unit(benchmark::kMicrosecond);
+
+// The gas step's cost per cell and SIMPLE iteration against the grid's size (issue 37, item 2:
+// it should stay within 1.3 x from 675 cells to 67,500). Arguments {nx, 0}: the paper's bed
+// (0.15 x 0.9 m) on nx x 3nx cells, from its 15 x 45 to 150 x 450, the grid of a study that
+// refines; {nx, ny}: the paper's 10 x 20 mm cells on a wider bed (nx / 15 jets, one every
+// 0.15 m, as wide.toml), up to the 240,000-sphere bed's 1500 x 45. The porosity is a bed's
+// (0.45 below 0.25 m, 1 above, a row of cells between) and the force on the gas is the weight
+// it would carry, as in BM_GasStep; 300 steps of start-up, then steps at the paper's CFL number
+// with the preconditioner refreshed as in a run. Time per cell and SIMPLE iteration
+// (s_per_unit); the label gives the SIMPLE iterations per step and the share of steps that
+// rebuilt the preconditioner.
+void BM_GasStepGrid(benchmark::State& state) {
+  GasGrid g;
+  g.nx = static_cast<int>(state.range(0));
+  if (state.range(1) > 0) {
+    g.ny = static_cast<int>(state.range(1));
+    g.width = 0.01 * g.nx;
+    g.height = 0.02 * g.ny;
+  } else {
+    g.ny = 3 * g.nx;
+  }
+  GasParams params;  // the paper's air, its jet at U = 2.8 m/s
+  params.jets = std::max(1, static_cast<int>(std::lround(g.width / 0.15)));
+  GasSolver gas(g, params);
+  std::vector<double> eps(static_cast<std::size_t>(g.cells()));
+  for (int j = 0; j < g.ny; ++j) {
+    const double y = (j + 0.5) * g.dy(), e = std::clamp((y - 0.25) / g.dy() + 0.5, 0.0, 1.0);
+    for (int i = 0; i < g.nx; ++i) eps[static_cast<std::size_t>(g.index(i, j))] = 0.45 + 0.55 * e;
+  }
+  gas.set_porosity(eps);
+  std::vector<double> fx(eps.size(), 0.0), fy(eps.size(), 0.0);
+  for (std::size_t c = 0; c < eps.size(); ++c) fy[c] = (1.0 - eps[c]) * (2700.0 - 1.205) * 9.81;
+  // The paper's step on its cells, shorter in proportion on finer ones: the same CFL number (a
+  // 1 mm cell under the 42 m/s jet at 1.5e-5 s would pass 1).
+  const double dt = 1.5e-5 * std::min(1.0, g.dx() / 0.01);
+  for (int k = 0; k < 300; ++k) gas.step(dt, eps, fx, fy);
+  std::int64_t iterations = 0, rebuilds = 0;
+  for (auto _ : state) {
+    const GasStepReport r = gas.step(dt, eps, fx, fy);
+    iterations += r.simple_iterations;
+    rebuilds += r.preconditioner_rebuilt ? 1 : 0;
+    benchmark::DoNotOptimize(r);
+  }
+  const double steps = static_cast<double>(state.iterations());
+  char label[96];
+  std::snprintf(label, sizeof label,
+                "per cell and SIMPLE iteration; %.2f iterations per step, %.1f %% rebuilt",
+                static_cast<double>(iterations) / steps, 100.0 * static_cast<double>(rebuilds) / steps);
+  time_per_unit(state, static_cast<double>(g.cells()) * static_cast<double>(iterations) / steps,
+                label);
+}
+BENCHMARK(BM_GasStepGrid)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({80, 0})
+    ->Args({150, 0})->Args({150, 45})->Args({1500, 45})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fluidbed

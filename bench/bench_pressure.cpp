@@ -3,17 +3,19 @@
 // paper's shape, three cells high per cell wide, from 675 cells (15 x 45, the paper's bed) to
 // 67,500 (150 x 450): per solve with the factorization kept (what most SIMPLE iterations pay),
 // and per refactorization (paid when a coefficient has moved by more than
-// gas.preconditioner_refresh). Counters per cell, so that a cost growing with the grid shows as
-// a growing number. The coefficients are a bed's: 1 +- 20 % from cell to cell (the porosity's
+// gas.preconditioner_refresh). Time per cell (s_per_unit), so that a cost growing with the grid
+// shows as a growing number. The coefficients are a bed's: 1 +- 20 % from cell to cell (the porosity's
 // variation), the kept factorization made from coefficients 5 % away (a refresh of 0.1 keeps
 // factorizations up to 10 % away), the right-hand side a smooth field with a jet-like peak.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <vector>
 
 #include "cfd/pressure_solver.hpp"
+#include "per_unit.hpp"
 
 namespace fluidbed {
 namespace {
@@ -61,12 +63,10 @@ void solve_kept(benchmark::State& state, PressureMethod method) {
     iterations += r.iterations;
     benchmark::DoNotOptimize(x.data());
   }
-  const double cells = static_cast<double>(nx) * ny;
-  state.counters["ns_per_cell"] = benchmark::Counter(
-      cells * static_cast<double>(state.iterations()),
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
-  state.counters["pcg_iterations"] =
-      static_cast<double>(iterations) / static_cast<double>(state.iterations());
+  char label[64];
+  std::snprintf(label, sizeof label, "per cell; %.1f PCG iterations",
+                static_cast<double>(iterations) / static_cast<double>(state.iterations()));
+  time_per_unit(state, static_cast<double>(nx) * ny, label);
 }
 
 void BM_PressureSolveKept(benchmark::State& state) {
@@ -92,11 +92,7 @@ void refactorize(benchmark::State& state, PressureMethod method) {
     fill(p, nx, ny, shift);
     benchmark::DoNotOptimize(p.update_preconditioner(0.0));
   }
-  const double cells = static_cast<double>(nx) * ny;
-  state.counters["ns_per_cell"] = benchmark::Counter(
-      cells * static_cast<double>(state.iterations()),
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
-  state.counters["pcg_iterations"] = 0.0;
+  time_per_unit(state, static_cast<double>(nx) * ny, "per cell");
 }
 
 void BM_PressureRefactorize(benchmark::State& state) {
