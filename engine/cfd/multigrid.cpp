@@ -33,29 +33,41 @@ void coarsen(const auto& f, auto& c) {
     }
 }
 
-// One Gauss-Seidel sweep of A x = b, forward (cells in increasing order) or backward.
+// One Gauss-Seidel sweep of A x = b, forward (cells in increasing order) or backward. A cell's
+// update waits for the neighbour just updated, so that term is taken last and the diagonal is
+// multiplied by its inverse: the chain from one cell to the next is a multiply, a subtraction
+// and a multiply, not a division (measured: BM_PressureSolveMultigrid).
 void sweep(auto& L, bool forward) {
   const int nx = L.nx, ny = L.ny;
-  const double* d = L.diag.data();
+  const double* inv = L.inv_diag.data();
   const double* e = L.east.data();
   const double* no = L.north.data();
   double* x = L.x.data();
   const double* b = L.b.data();
-  const auto relax = [&](int i, int j) {
-    const int c = j * nx + i;
+  const auto others = [&](int j, int c) {  // b minus the rows below and above
     double s = b[c];
-    if (i > 0) s -= e[c - 1] * x[c - 1];
-    if (i + 1 < nx) s -= e[c] * x[c + 1];
     if (j > 0) s -= no[c - nx] * x[c - nx];
     if (j + 1 < ny) s -= no[c] * x[c + nx];
-    x[c] = s / d[c];
+    return s;
   };
   if (forward) {
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) relax(i, j);
+      for (int i = 0; i < nx; ++i) {
+        const int c = j * nx + i;
+        double s = others(j, c);
+        if (i + 1 < nx) s -= e[c] * x[c + 1];
+        if (i > 0) s -= e[c - 1] * x[c - 1];
+        x[c] = s * inv[c];
+      }
   } else {
     for (int j = ny - 1; j >= 0; --j)
-      for (int i = nx - 1; i >= 0; --i) relax(i, j);
+      for (int i = nx - 1; i >= 0; --i) {
+        const int c = j * nx + i;
+        double s = others(j, c);
+        if (i > 0) s -= e[c - 1] * x[c - 1];
+        if (i + 1 < nx) s -= e[c] * x[c + 1];
+        x[c] = s * inv[c];
+      }
   }
 }
 
@@ -97,6 +109,8 @@ bool MultigridPreconditioner::build(int nx, int ny, const double* diag, const do
     L.x.assign(m, 0.0);
     L.b.assign(m, 0.0);
     L.r.assign(m, 0.0);
+    L.inv_diag.resize(m);
+    for (std::size_t k = 0; k < m; ++k) L.inv_diag[k] = 1.0 / L.diag[k];
   }
   const Level& c = levels_.back();
   coarse_ = std::make_unique<BandedLdlt>(c.nx, c.ny);
