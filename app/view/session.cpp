@@ -278,14 +278,14 @@ void ViewSession::apply(const ViewCommand& c,
       regime_ = RegimeWatch(now, model_.sim());
       curve_.clear(model_.sim().time(), held_velocity(), check_scene(now).figures.weight_per_area);
       if (now.particles.diameter != old_d || now.particles.density != old_rho) {
-        if (!(scene_umf_.umf > 0.0) || !now.gas.enabled)
-          umf_ = scene_umf_;
-        else if (now.particles.diameter == model_.opened_scene().particles.diameter &&
-                 now.particles.density == model_.opened_scene().particles.density)
+        const Settings& opened = model_.opened_scene();
+        const bool scenes_own = now.particles.diameter == opened.particles.diameter &&
+                                now.particles.density == opened.particles.density;
+        if (!(scene_umf_.umf > 0.0) || !now.gas.enabled || scenes_own)
           umf_ = scene_umf_;
         else
           try {
-            umf_ = umf_for_particles(scene_umf_, model_.opened_scene(), now, notify, umf_shipped_);
+            umf_ = umf_for_particles(scene_umf_, opened, now, notify, umf_shipped_);
           } catch (const std::exception& e) {  // the bed runs; the presets wait for a U_mf
             if (notify) notify(std::string("no U_mf for the new particles: ") + e.what());
             umf_ = UmfEstimate{};
