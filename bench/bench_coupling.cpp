@@ -12,6 +12,7 @@
 
 #include "cfd/gas_grid.hpp"
 #include "cfd/gas_solver.hpp"
+#include "coupling/coupler.hpp"
 #include "coupling/porosity.hpp"
 #include "per_unit.hpp"
 #include "scene/settings.hpp"
@@ -93,6 +94,63 @@ void BM_PorosityFromSolid(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * g.cells());
 }
 BENCHMARK(BM_PorosityFromSolid);
+
+// The coupler's passes over the particles at each gas step, on one thread: the porosity and the
+// drag summed per cell (Coupler::exchange), then each particle's drag frozen for the steps that
+// follow (Coupler::freeze_drag), against the bed's width: N = 2,400 k spheres of 4 mm on a
+// lattice (4.2 mm apart, numbered row by row) in a bed 0.15 k m wide on the paper's 10 x 20 mm
+// cells, k = 1, 10, 100 (the 240,000-sphere bed's 1500 x 45 grid). The gas is at rest with the
+// porosity of the lattice; the particles move at a few cm/s. Time per particle (s_per_unit).
+// Second argument 1 (the widest bed only): 256 MB are written between the passes (untimed), as
+// the gas step and the contacts of a run come between them, so that the passes start from a
+// cold cache.
+void BM_CouplerPasses(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const bool cold = state.range(1) != 0;
+  std::vector<double> evict(cold ? (256u << 20) / sizeof(double) : 0, 0.0);
+  const int k = static_cast<int>(n / 2400);
+  GasGrid g;
+  g.nx = 15 * k;
+  g.width = 0.15 * k;
+  Particles p;
+  p.resize(n);
+  const double pitch = 0.0042;
+  const auto per_row = static_cast<std::size_t>(g.width / pitch);
+  for (std::size_t i = 0; i < n; ++i) {
+    p.set_sphere(i, 0.004, 2700.0);
+    p.x[i] = 0.5 * pitch + pitch * static_cast<double>(i % per_row);
+    p.y[i] = 0.5 * pitch + pitch * static_cast<double>(i / per_row);
+    p.vx[i] = 0.03 * std::sin(0.7 * static_cast<double>(i));
+    p.vy[i] = 0.03 * std::cos(1.3 * static_cast<double>(i));
+  }
+  Coupler coupler(g, CouplerParams{}, n);
+  GasSolver gas(g, GasParams{});
+  gas.set_porosity(coupler.compute_porosity(p, 0.0));
+  coupler.refresh_cells(gas);
+  coupler.freeze_drag(p);
+  coupler.advance_drag(p, false);
+  std::vector<double> fx, fy;
+  double total_x = 0.0, total_y = 0.0;
+  for (auto _ : state) {
+    if (cold) {
+      state.PauseTiming();
+      for (double& v : evict) v += 1.0;
+      benchmark::DoNotOptimize(evict.data());
+      benchmark::ClobberMemory();
+      state.ResumeTiming();
+    }
+    coupler.exchange(p, 0.0, fx, fy, total_x, total_y);
+    coupler.freeze_drag(p);
+    coupler.advance_drag(p, false);  // a drag to sum at the next exchange
+    benchmark::ClobberMemory();
+  }
+  time_per_unit(state, static_cast<double>(n),
+                cold ? "per particle and gas step, from a cold cache" : "per particle and gas step");
+}
+BENCHMARK(BM_CouplerPasses)->Args({2400, 0})->Args({24000, 0})->Args({240000, 0})
+    ->Unit(benchmark::kMicrosecond);
+// The cold passes of the widest bed a fixed number of times: each writes 256 MB untimed first.
+BENCHMARK(BM_CouplerPasses)->Args({240000, 1})->Iterations(40)->Unit(benchmark::kMicrosecond);
 
 // One gas step (SIMPLE, Crank-Nicolson, PCG pressure correction) at the paper's dt through the
 // settled bed, the jet at U = 2.8 m/s (42 m/s in the slot), after 2000 steps of start-up. The

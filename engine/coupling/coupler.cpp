@@ -27,10 +27,13 @@ Coupler::Coupler(const GasGrid& grid, const CouplerParams& c, std::size_t partic
   parallel_ = threads_ > 1 && particles >= 256;
   sums_.configure(grid.cells(), threads_);
   geometry_.resize(static_cast<std::size_t>(threads_));
+  for (ShareGeometry& g : geometry_) g.resize(kChunk);
+  freeze_scratch_.resize(static_cast<std::size_t>(threads_));
+  for (FreezeScratch& f : freeze_scratch_)
+    for (auto* v : {&f.slip_x, &f.slip_y, &f.slip, &f.eps_at, &f.ln_eps_at}) v->assign(kChunk, 0.0);
   drag_sums_.configure(grid.cells(), threads_);
   for (auto* v : {&s_.gas_ux, &s_.gas_uy, &s_.beta, &s_.base_fx, &s_.base_fy, &s_.drag_x,
-                  &s_.drag_y, &s_.sum_x, &s_.sum_y, &slip_x_, &slip_y_, &slip_, &eps_at_,
-                  &ln_eps_at_})
+                  &s_.drag_y, &s_.sum_x, &s_.sum_y})
     v->assign(particles, 0.0);
   const auto cells = static_cast<std::size_t>(grid.cells());
   for (auto* v : {&cell_ux_, &cell_uy_, &cell_gx_, &cell_gy_, &ln_eps_, &cell_sum_x_, &cell_sum_y_})
@@ -59,18 +62,20 @@ const std::vector<double>& Coupler::compute_porosity(const Particles& p, double 
 }
 
 // Each sphere's shares (the closed forms are the work) summed per cell block by block, so the
-// porosity is the same bits for any thread count.
+// porosity is the same bits for any thread count. The geometry is found a chunk at a time.
 void Coupler::porosity_range(const Particles& p, int t, std::size_t b, std::size_t e) {
   ShareGeometry& geo = geometry_[static_cast<std::size_t>(t)];
-  geo.resize(e - b);
-  share_geometry(grid_, e - b, p.x.data() + b, p.y.data() + b, p.radius.data() + b, geo);
-  for (std::size_t q = b; q < e; q += kParticleBlock) {
-    sums_.begin_block(t);
-    const std::size_t q1 = std::min(e, q + kParticleBlock);
-    for (std::size_t i = q; i < q1; ++i) {
-      VolumeShares sh;
-      shares_from_geometry(grid_, geo, i - b, p.radius[i], sh);
-      for (int c = 0; c < sh.count; ++c) sums_.add(t, sh.cell[c], sh.volume[c], 0.0);
+  for (std::size_t c0 = b; c0 < e; c0 += kChunk) {
+    const std::size_t c1 = std::min(e, c0 + kChunk);
+    share_geometry(grid_, c1 - c0, p.x.data() + c0, p.y.data() + c0, p.radius.data() + c0, geo);
+    for (std::size_t q = c0; q < c1; q += kParticleBlock) {
+      sums_.begin_block(t);
+      const std::size_t q1 = std::min(c1, q + kParticleBlock);
+      for (std::size_t i = q; i < q1; ++i) {
+        VolumeShares sh;
+        shares_from_geometry(grid_, geo, i - c0, p.radius[i], sh);
+        for (int c = 0; c < sh.count; ++c) sums_.add(t, sh.cell[c], sh.volume[c], 0.0);
+      }
     }
   }
 }
@@ -118,39 +123,50 @@ void Coupler::refresh_cells(const GasSolver& gas) {
 }
 
 void Coupler::freeze_drag(Particles& p, const std::vector<std::size_t>& split) {
-  per_thread(p.size(), split, [&](int, std::size_t b, std::size_t e) { freeze_range(p, b, e); });
+  per_thread(p.size(), split,
+             [&](int t, std::size_t b, std::size_t e) { freeze_range(p, t, b, e); });
 }
 
-void Coupler::freeze_range(Particles& p, std::size_t begin, std::size_t end) {
+void Coupler::freeze_range(Particles& p, int t, std::size_t b, std::size_t e) {
+  FreezeScratch& f = freeze_scratch_[static_cast<std::size_t>(t)];
+  for (std::size_t c0 = b; c0 < e; c0 += kChunk)
+    freeze_chunk(p, f, c0, std::min(e, c0 + kChunk));
+}
+
+void Coupler::freeze_chunk(Particles& p, FreezeScratch& f, std::size_t begin, std::size_t end) {
   constexpr double kPi = std::numbers::pi;
-  // Three passes over the range: the gas at each particle (gathers from the cells), the drag
+  // Three passes over the chunk: the gas at each particle (gathers from the cells), the drag
   // coefficient (pure arithmetic over arrays: vectorised), the forces.
   const double dx = grid_.dx(), dy = grid_.dy(), bottom = grid_.bottom;
   const int nx = grid_.nx, ny = grid_.ny;
   const bool depth = p.has_depth();
+  double* slip_x = f.slip_x.data();  // indexed by i - begin
+  double* slip_y = f.slip_y.data();
+  double* slip = f.slip.data();
+  double* eps_at = f.eps_at.data();
+  double* ln_eps_at = f.ln_eps_at.data();
   for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t k = i - begin;
     const int c = GasGrid::along(p.y[i] - bottom, dy, ny) * nx + GasGrid::along(p.x[i], dx, nx);
     s_.cell[i] = c;
     s_.gas_ux[i] = cell_ux_[c];
     s_.gas_uy[i] = cell_uy_[c];
     const double sx = cell_ux_[c] - p.vx[i], sy = cell_uy_[c] - p.vy[i];
-    slip_x_[i] = sx;
-    slip_y_[i] = sy;
+    slip_x[k] = sx;
+    slip_y[k] = sy;
     // A thick slab's particle also slips through the gas along z, which has no z velocity.
     const double sz = depth ? -p.vz[i] : 0.0;
-    slip_[i] = std::sqrt(sx * sx + sy * sy + sz * sz);
-    eps_at_[i] = s_.eps[c];
-    ln_eps_at_[i] = ln_eps_[c];
+    slip[k] = std::sqrt(sx * sx + sy * sy + sz * sz);
+    eps_at[k] = s_.eps[c];
+    ln_eps_at[k] = ln_eps_[c];
   }
-  const std::size_t count = end - begin;
-  di_felice_beta_many(count, p.radius.data() + begin, eps_at_.data() + begin,
-                      ln_eps_at_.data() + begin, slip_.data() + begin, rho_f_, mu_f_,
+  di_felice_beta_many(end - begin, p.radius.data() + begin, eps_at, ln_eps_at, slip, rho_f_, mu_f_,
                       s_.beta.data() + begin);
   const bool pgf = pressure_gradient_force_;
   for (std::size_t i = begin; i < end; ++i) {
     const int c = s_.cell[i];
-    s_.drag_x[i] = s_.beta[i] * slip_x_[i];
-    s_.drag_y[i] = s_.beta[i] * slip_y_[i];
+    s_.drag_x[i] = s_.beta[i] * slip_x[i - begin];
+    s_.drag_y[i] = s_.beta[i] * slip_y[i - begin];
     // Without model A the base force is -0.0, which added to any drag gives the drag itself.
     double bx = -0.0, by = -0.0;
     if (pgf) {
