@@ -144,39 +144,49 @@ void BM_CouplerPasses(benchmark::State& state) {
     coupler.advance_drag(p, false);  // a drag to sum at the next exchange
     benchmark::ClobberMemory();
   }
-  time_per_unit(state, static_cast<double>(n),
-                cold ? "per particle and gas step, from a cold cache" : "per particle and gas step");
+  time_per_unit(state, static_cast<double>(n), cold ? "per particle and gas step, cold cache"
+                                                    : "per particle and gas step");
 }
 BENCHMARK(BM_CouplerPasses)->Args({2400, 0})->Args({24000, 0})->Args({240000, 0})
     ->Unit(benchmark::kMicrosecond);
 // The cold passes of the widest bed a fixed number of times: each writes 256 MB untimed first.
 BENCHMARK(BM_CouplerPasses)->Args({240000, 1})->Iterations(40)->Unit(benchmark::kMicrosecond);
 
+// Steps the gas `warmup` times through `eps` under the weight a fluidized bed would hand to it,
+// F = (1 - eps)(rho_p - rho_f) g per cell (N/m^3, upward: its order of magnitude), then once per
+// iteration of the benchmark's loop. Time per cell and SIMPLE iteration (s_per_unit); the label
+// gives the SIMPLE iterations per step and the share of steps that rebuilt the preconditioner.
+void time_gas_steps(benchmark::State& state, GasSolver& gas, const std::vector<double>& eps,
+                    double dt, int warmup) {
+  gas.set_porosity(eps);
+  std::vector<double> fx(eps.size(), 0.0), fy(eps.size(), 0.0);
+  for (std::size_t c = 0; c < eps.size(); ++c) fy[c] = (1.0 - eps[c]) * (2700.0 - 1.205) * 9.81;
+  for (int k = 0; k < warmup; ++k) gas.step(dt, eps, fx, fy);
+  std::int64_t iterations = 0, rebuilds = 0;
+  for (auto _ : state) {
+    const GasStepReport r = gas.step(dt, eps, fx, fy);
+    iterations += r.simple_iterations;
+    rebuilds += r.preconditioner_rebuilt ? 1 : 0;
+    benchmark::DoNotOptimize(r);
+  }
+  const double steps = static_cast<double>(state.iterations());
+  char label[96];
+  std::snprintf(label, sizeof label,
+                "per cell and SIMPLE iteration; %.2f iterations per step, %.1f %% rebuilt",
+                static_cast<double>(iterations) / steps,
+                100.0 * static_cast<double>(rebuilds) / steps);
+  time_per_unit(state, static_cast<double>(eps.size()) * static_cast<double>(iterations) / steps,
+                label);
+}
+
 // One gas step (SIMPLE, Crank-Nicolson, PCG pressure correction) at the paper's dt through the
-// settled bed, the jet at U = 2.8 m/s (42 m/s in the slot), after 2000 steps of start-up. The
-// force on the particles is the weight a fluidized bed would hand to the gas,
-// F = (1 - eps)(rho_p - rho_f) g per cell (N/m^3, upward): its order of magnitude.
+// settled bed, the jet at U = 2.8 m/s (42 m/s in the slot), after 2000 steps of start-up.
 void BM_GasStep(benchmark::State& state) {
   const GasGrid g;
   static const std::vector<double> eps = settled_porosity(g);
   GasParams params;  // the paper's air and jet
   GasSolver gas(g, params);
-  gas.set_porosity(eps);
-  std::vector<double> fx(eps.size(), 0.0), fy(eps.size(), 0.0);
-  for (std::size_t c = 0; c < eps.size(); ++c) fy[c] = (1.0 - eps[c]) * (2700.0 - 1.205) * 9.81;
-  const double dt = 1.5e-5;
-  for (int k = 0; k < 2000; ++k) gas.step(dt, eps, fx, fy);
-  std::int64_t iterations = 0;
-  for (auto _ : state) {
-    const GasStepReport r = gas.step(dt, eps, fx, fy);
-    iterations += r.simple_iterations;
-    benchmark::DoNotOptimize(r);
-  }
-  // A label, not a counter: the CSV reporter wants the same counters in every benchmark.
-  char label[64];
-  std::snprintf(label, sizeof label, "%.2f SIMPLE iterations per step",
-                static_cast<double>(iterations) / static_cast<double>(state.iterations()));
-  state.SetLabel(label);
+  time_gas_steps(state, gas, eps, 1.5e-5, 2000);
 }
 BENCHMARK(BM_GasStep)->Unit(benchmark::kMicrosecond);
 
@@ -185,11 +195,8 @@ BENCHMARK(BM_GasStep)->Unit(benchmark::kMicrosecond);
 // (0.15 x 0.9 m) on nx x 3nx cells, from its 15 x 45 to 150 x 450, the grid of a study that
 // refines; {nx, ny}: the paper's 10 x 20 mm cells on a wider bed (nx / 15 jets, one every
 // 0.15 m, as wide.toml), up to the 240,000-sphere bed's 1500 x 45. The porosity is a bed's
-// (0.45 below 0.25 m, 1 above, a row of cells between) and the force on the gas is the weight
-// it would carry, as in BM_GasStep; 300 steps of start-up, then steps at the paper's CFL number
-// with the preconditioner refreshed as in a run. Time per cell and SIMPLE iteration
-// (s_per_unit); the label gives the SIMPLE iterations per step and the share of steps that
-// rebuilt the preconditioner.
+// (0.45 below 0.25 m, 1 above, a row of cells between); 300 steps of start-up, then steps at
+// the paper's CFL number with the preconditioner refreshed as in a run.
 void BM_GasStepGrid(benchmark::State& state) {
   GasGrid g;
   g.nx = static_cast<int>(state.range(0));
@@ -208,27 +215,9 @@ void BM_GasStepGrid(benchmark::State& state) {
     const double y = (j + 0.5) * g.dy(), e = std::clamp((y - 0.25) / g.dy() + 0.5, 0.0, 1.0);
     for (int i = 0; i < g.nx; ++i) eps[static_cast<std::size_t>(g.index(i, j))] = 0.45 + 0.55 * e;
   }
-  gas.set_porosity(eps);
-  std::vector<double> fx(eps.size(), 0.0), fy(eps.size(), 0.0);
-  for (std::size_t c = 0; c < eps.size(); ++c) fy[c] = (1.0 - eps[c]) * (2700.0 - 1.205) * 9.81;
   // The paper's step on its cells, shorter in proportion on finer ones: the same CFL number (a
   // 1 mm cell under the 42 m/s jet at 1.5e-5 s would pass 1).
-  const double dt = 1.5e-5 * std::min(1.0, g.dx() / 0.01);
-  for (int k = 0; k < 300; ++k) gas.step(dt, eps, fx, fy);
-  std::int64_t iterations = 0, rebuilds = 0;
-  for (auto _ : state) {
-    const GasStepReport r = gas.step(dt, eps, fx, fy);
-    iterations += r.simple_iterations;
-    rebuilds += r.preconditioner_rebuilt ? 1 : 0;
-    benchmark::DoNotOptimize(r);
-  }
-  const double steps = static_cast<double>(state.iterations());
-  char label[96];
-  std::snprintf(label, sizeof label,
-                "per cell and SIMPLE iteration; %.2f iterations per step, %.1f %% rebuilt",
-                static_cast<double>(iterations) / steps, 100.0 * static_cast<double>(rebuilds) / steps);
-  time_per_unit(state, static_cast<double>(g.cells()) * static_cast<double>(iterations) / steps,
-                label);
+  time_gas_steps(state, gas, eps, 1.5e-5 * std::min(1.0, g.dx() / 0.01), 300);
 }
 BENCHMARK(BM_GasStepGrid)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({80, 0})
     ->Args({150, 0})->Args({150, 45})->Args({1500, 45})->Unit(benchmark::kMicrosecond);

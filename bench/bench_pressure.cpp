@@ -4,9 +4,9 @@
 // 67,500 (150 x 450): per solve with the factorization kept (what most SIMPLE iterations pay),
 // and per refactorization (paid when a coefficient has moved by more than
 // gas.preconditioner_refresh). Time per cell (s_per_unit), so that a cost growing with the grid
-// shows as a growing number. The coefficients are a bed's: 1 +- 20 % from cell to cell (the porosity's
-// variation), the kept factorization made from coefficients 5 % away (a refresh of 0.1 keeps
-// factorizations up to 10 % away), the right-hand side a smooth field with a jet-like peak.
+// shows as a growing number. The coefficients are a bed's: 1 +- 20 % from cell to cell (the
+// porosity's variation), the kept factorization made from coefficients 5 % away (a refresh of 0.1
+// keeps factorizations up to 10 % away), the right-hand side a smooth field with a jet-like peak.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -46,7 +46,16 @@ std::vector<double> rhs(int nx, int ny) {
 
 // Arguments: the grid's width in cells (3 times as many rows), or width and height.
 int rows(const benchmark::State& state) {
-  return state.range(1) > 0 ? static_cast<int>(state.range(1)) : 3 * static_cast<int>(state.range(0));
+  return state.range(1) > 0 ? static_cast<int>(state.range(1))
+                            : 3 * static_cast<int>(state.range(0));
+}
+
+// Every benchmark's grids: the paper's shape from 15 x 45 to 150 x 450, then wide beds of the
+// paper's cells up to the 240,000-sphere bed's 1500 x 45.
+void grids(benchmark::internal::Benchmark* b) {
+  for (int nx : {15, 30, 50, 65, 80, 90, 150}) b->Args({nx, 0});
+  for (int nx : {150, 500, 1500}) b->Args({nx, 45});
+  b->Unit(benchmark::kMicrosecond);
 }
 
 void solve_kept(benchmark::State& state, PressureMethod method) {
@@ -72,16 +81,12 @@ void solve_kept(benchmark::State& state, PressureMethod method) {
 void BM_PressureSolveKept(benchmark::State& state) {
   solve_kept(state, PressureMethod::banded);
 }
-BENCHMARK(BM_PressureSolveKept)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({65, 0})->Args({80, 0})->Args({90, 0})->Args({150, 0})
-    ->Args({150, 45})->Args({500, 45})->Args({1500, 45})
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PressureSolveKept)->Apply(grids);
 
 void BM_PressureSolveMultigrid(benchmark::State& state) {
   solve_kept(state, PressureMethod::multigrid);
 }
-BENCHMARK(BM_PressureSolveMultigrid)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({65, 0})->Args({80, 0})->Args({90, 0})->Args({150, 0})
-    ->Args({150, 45})->Args({500, 45})->Args({1500, 45})
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PressureSolveMultigrid)->Apply(grids);
 
 void refactorize(benchmark::State& state, PressureMethod method) {
   const int nx = static_cast<int>(state.range(0)), ny = rows(state);
@@ -98,16 +103,12 @@ void refactorize(benchmark::State& state, PressureMethod method) {
 void BM_PressureRefactorize(benchmark::State& state) {
   refactorize(state, PressureMethod::banded);
 }
-BENCHMARK(BM_PressureRefactorize)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({65, 0})->Args({80, 0})->Args({90, 0})->Args({150, 0})
-    ->Args({150, 45})->Args({500, 45})->Args({1500, 45})
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PressureRefactorize)->Apply(grids);
 
 void BM_PressureRebuildMultigrid(benchmark::State& state) {
   refactorize(state, PressureMethod::multigrid);
 }
-BENCHMARK(BM_PressureRebuildMultigrid)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({65, 0})->Args({80, 0})->Args({90, 0})->Args({150, 0})
-    ->Args({150, 45})->Args({500, 45})->Args({1500, 45})
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PressureRebuildMultigrid)->Apply(grids);
 
 }  // namespace
 }  // namespace fluidbed

@@ -109,6 +109,7 @@ bool MultigridPreconditioner::build(int nx, int ny, const double* diag, const do
     L.x.assign(m, 0.0);
     L.b.assign(m, 0.0);
     L.r.assign(m, 0.0);
+    if (&L == &levels_.back()) break;  // solved exactly, never swept
     L.inv_diag.resize(m);
     for (std::size_t k = 0; k < m; ++k) L.inv_diag[k] = 1.0 / L.diag[k];
   }

@@ -36,7 +36,7 @@ class MultigridPreconditioner {
   struct Level {
     int nx = 0, ny = 0;
     std::vector<double> diag, east, north;
-    std::vector<double> inv_diag;  // 1 / diag
+    std::vector<double> inv_diag;  // 1 / diag (empty on the coarsest level, never swept)
     std::vector<double> x, b, r;  // this level's unknowns, right-hand side and residual
   };
   std::vector<Level> levels_;
