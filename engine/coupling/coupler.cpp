@@ -164,9 +164,10 @@ void Coupler::freeze_chunk(Particles& p, FreezeScratch& f, std::size_t begin, st
                       s_.beta.data() + begin);
   const bool pgf = pressure_gradient_force_;
   for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t k = i - begin;
     const int c = s_.cell[i];
-    s_.drag_x[i] = s_.beta[i] * slip_x[i - begin];
-    s_.drag_y[i] = s_.beta[i] * slip_y[i - begin];
+    s_.drag_x[i] = s_.beta[i] * slip_x[k];
+    s_.drag_y[i] = s_.beta[i] * slip_y[k];
     // Without model A the base force is -0.0, which added to any drag gives the drag itself.
     double bx = -0.0, by = -0.0;
     if (pgf) {
