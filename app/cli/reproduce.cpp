@@ -51,7 +51,7 @@ RunEnd run_into(const fs::path& dir, const Settings& s, double until,
   job.started = {{"format", 1}, {"reproduce_run", dir.filename().string()}, {"until_s", until},
                  {"montage", montage}};
   job.outputs.push_back(std::make_unique<PlotOutput>(
-      [track_at](const Simulation& sim) { return nearest_particles(sim.dem().particles(), track_at); },
+      [track_at](const Simulation& sim) { return nearest_particles(sim.dem(), track_at); },
       0.005));
   if (!montage.empty()) {
     FrameOptions fo;

@@ -58,7 +58,7 @@ std::vector<int> parse_ids(const std::string& list, std::size_t count) {
 // The particles whose paths a run's plots follow: --track's ids, else those nearest the jet's
 // region.
 std::vector<int> tracked_ids(const std::string& track, const Simulation& sim, double width) {
-  return track.empty() ? nearest_particles(sim.dem().particles(), jet_region_points(width))
+  return track.empty() ? nearest_particles(sim.dem(), jet_region_points(width))
                        : parse_ids(track, sim.particle_count());
 }
 

@@ -118,8 +118,9 @@ chart::Image trajectory_figure(const std::vector<Trajectory>& tracks, double wid
 
 }  // namespace
 
-std::vector<int> nearest_particles(const Particles& p,
+std::vector<int> nearest_particles(const DemSolver& dem,
                                    const std::vector<std::pair<double, double>>& at) {
+  const Particles& p = dem.particles();
   std::vector<int> ids;
   for (const auto& [x, y] : at) {
     int best = 0;
@@ -131,7 +132,7 @@ std::vector<int> nearest_particles(const Particles& p,
         best = static_cast<int>(i);
       }
     }
-    ids.push_back(best);
+    ids.push_back(static_cast<int>(dem.id_of(static_cast<std::size_t>(best))));
   }
   return ids;
 }
@@ -150,8 +151,9 @@ void TrajectoryRecorder::observe(const Simulation& sim) {
   const Particles& p = sim.dem().particles();
   for (auto& tr : tracks_) {
     tr.t.push_back(sim.time());
-    tr.x.push_back(p.x[tr.id]);
-    tr.y.push_back(p.y[tr.id]);
+    const std::size_t at = sim.dem().place_of(static_cast<std::size_t>(tr.id));
+    tr.x.push_back(p.x[at]);
+    tr.y.push_back(p.y[at]);
   }
 }
 

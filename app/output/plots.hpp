@@ -26,8 +26,8 @@ struct Trajectory {
   }
 };
 
-// The particles nearest to the given points (m) at the start of a run.
-std::vector<int> nearest_particles(const Particles& p,
+// The particles nearest to the given points (m) at the start of a run (their ids).
+std::vector<int> nearest_particles(const DemSolver& dem,
                                    const std::vector<std::pair<double, double>>& at);
 // The default tracked particles: two starting in the jet region (the paper's Figs 12-13).
 std::vector<std::pair<double, double>> jet_region_points(double width);

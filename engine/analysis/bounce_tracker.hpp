@@ -15,13 +15,16 @@ class BounceTracker {
  public:
   BounceTracker(const DemSolver& dem, double gravity) : g_(gravity) {
     const Particles& p = dem.particles();
-    drop_height_ = p.y[0] - p.radius[0];
+    const std::size_t i = dem.place_of(0);
+    drop_height_ = p.y[i] - p.radius[i];
     record(dem);
   }
 
   // Call after every step.
   void observe(const DemSolver& dem) {
-    const bool touching = dem.state().walls.active[0] != 0;  // particle 0, bottom wall
+    // particle 0, bottom wall (wall 0 of its row)
+    const auto row = static_cast<std::size_t>(dem.state().walls.walls) * dem.place_of(0);
+    const bool touching = dem.state().walls.active[row] != 0;
     if (touching && !in_contact_) {
       in_contact_ = true;
       impact_speed_ = touch_speed(last_gap_, last_vy_);
@@ -60,8 +63,9 @@ class BounceTracker {
  private:
   void record(const DemSolver& dem) {
     const Particles& p = dem.particles();
-    last_gap_ = p.y[0] - p.radius[0];
-    last_vy_ = p.vy[0];
+    const std::size_t i = dem.place_of(0);
+    last_gap_ = p.y[i] - p.radius[i];
+    last_vy_ = p.vy[i];
   }
   double touch_speed(double gap, double vy) const {
     return std::sqrt(vy * vy + 2.0 * g_ * std::max(gap, 0.0));

@@ -5,12 +5,14 @@
 // Newton's third law (eq 21) holds exactly: each particle's drag is computed once per particle
 // step, applied to the particle in the next step, and summed per cell (averaged over the particle
 // steps of one gas step) as the force F the gas feels in that cell.
+#include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "cfd/gas_grid.hpp"
 #include "coupling/block_sums.hpp"
 #include "coupling/porosity.hpp"
+#include "core/permute.hpp"
 #include "coupling/void_fraction_smoothing.hpp"
 #include "dem/particles.hpp"
 
@@ -38,6 +40,13 @@ struct CouplingState {
   std::vector<double> beta, gas_ux, gas_uy, base_fx, base_fy;  // idem
   std::vector<double> drag_x, drag_y, sum_x, sum_y;   // per particle: last drag, summed drag
   int accumulated = 0;
+  // The per-particle arrays reordered: the particle at from[s] moves to s (the particles'
+  // renumbering, DemSolver::on_renumber; core/permute.hpp).
+  void reorder(const std::vector<std::int32_t>& from) {
+    gather_by(cell, from);
+    for (auto* v : {&beta, &gas_ux, &gas_uy, &base_fx, &base_fy, &drag_x, &drag_y, &sum_x, &sum_y})
+      gather_by(*v, from);
+  }
 };
 
 class Coupler {
@@ -93,6 +102,7 @@ class Coupler {
                                       const std::vector<std::size_t>& split = {});
 
   void save(CouplingState& out) const;
+  void reorder(const std::vector<std::int32_t>& from) { s_.reorder(from); }
   // Throws InputError when the sizes do not fit this grid and particle count.
   void restore(const CouplingState& in, std::size_t particles);
 

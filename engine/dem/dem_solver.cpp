@@ -27,7 +27,8 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
       width_(d.width),
       height_(d.height),
       thickness_(d.thickness),
-      overlap_limit_(d.overlap_limit) {
+      overlap_limit_(d.overlap_limit),
+      renumber_steps_(d.renumber_steps) {
   wall_params_.mu = d.wall_mu.value_or(d.contact.mu);
   depth_ = particles.has_depth();
   if (params_.hertz && !depth_)  // the monolayer's passes have the linear law only
@@ -49,6 +50,10 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   for (double r : particles.radius) dmax = std::max(dmax, 2.0 * r);
   skin_ = d.skin * dmax;
   list_.configure(width_, height_, dmax, skin_, n, threads_, depth_);
+  // The renumbering's cells: a diameter (not the skin, on which no result may depend), and no
+  // more than about twice the particles, as the neighbour list's.
+  const double per_particle = width_ * height_ / static_cast<double>(std::max<std::size_t>(n, 1));
+  cell_ = std::max(dmax, std::sqrt(0.5 * per_particle));
   near_wall_.assign(static_cast<std::size_t>(threads_), {});
   state_.particles = std::move(particles);
   overlap_.assign(n, 0.0);
@@ -60,32 +65,6 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
     p.ay[i] = p.ext_fy[i] * p.inv_mass[i] - gravity_;
     if (depth_) p.az[i] = p.ext_fz[i] * p.inv_mass[i];
   }
-}
-
-void DemSolver::set_state(DemState s) {
-  if (s.particles.size() != state_.particles.size())
-    throw InputError("state has " + std::to_string(s.particles.size()) +
-                     " particles but the scene has " + std::to_string(state_.particles.size()));
-  if (s.walls.walls != static_cast<int>(walls_.size()))
-    throw InputError("state was saved with " + std::to_string(s.walls.walls) +
-                     " walls but the scene has " + std::to_string(walls_.size()));
-  if (s.particles.has_depth() != depth_)
-    throw InputError(std::string("state was saved for a ") +
-                     (depth_ ? "monolayer" : "thick slab") + " but the scene is a " +
-                     (depth_ ? "thick slab" : "monolayer"));
-  state_ = std::move(s);
-  list_.import_history(state_.pairs);
-  // Built here so that the history is in place (hashes, exports) before the next step, which
-  // builds again on its threads.
-  rebuild(0, 1, 0, state_.particles.size());
-  near_threads_ = 0;
-  state_.pairs.clear();
-}
-
-DemState DemSolver::exported_state() const {
-  DemState copy = state_;
-  list_.export_history(copy.pairs);
-  return copy;
 }
 
 void DemSolver::fail(const std::string& what) const {
@@ -528,6 +507,11 @@ void DemSolver::step(const RangeWork& after) {
     if (after) after(0, P.size());
     return;
   }
+  if (renumber_steps_ > 0 && state_.step % renumber_steps_ == 0) {
+    PhaseClock clock(times_);
+    renumber();
+    clock.lap(Phase::Neighbours);
+  }
   if (incremental_) {
     step_particles<true>(after);
   } else {
@@ -546,7 +530,8 @@ void DemSolver::finish_step() {
     for (std::size_t i = 0; i < n; ++i)
       if (!std::isfinite(P.vx[i] + P.vy[i] + P.w[i] + P.x[i] + P.y[i]) ||
           (depth_ && !std::isfinite(P.z[i] + P.vz[i] + P.wx[i] + P.wy[i])))
-        fail("particle " + std::to_string(i) + " has a non-finite position or velocity (NaN)");
+        fail("particle " + std::to_string(id_of(i)) +
+             " has a non-finite position or velocity (NaN)");
     fail("kinetic energy is not finite");
   }
   const double* x = P.x.data();
@@ -571,7 +556,7 @@ void DemSolver::finish_step() {
         where = "left the bed through the front wall";
       else if (depth_ && P.z[i] > thickness_ + r[i])
         where = "left the bed through the back wall";
-      if (where) fail("particle " + std::to_string(i) + " " + where);
+      if (where) fail("particle " + std::to_string(id_of(i)) + " " + where);
     }
   }
   const double worst = std::max(diag_.max_overlap_ratio, 0.5 * diag_.max_wall_overlap_ratio);
@@ -579,8 +564,11 @@ void DemSolver::finish_step() {
     // The first pair (in list order) with the largest overlap, for the message.
     for (const auto& a : partial_)
       if (a.worst >= 0 && a.max_ratio == diag_.max_overlap_ratio) {
-        worst_pair_i_ = list_.slots().i[static_cast<std::size_t>(a.worst)];
-        worst_pair_j_ = list_.slots().j[static_cast<std::size_t>(a.worst)];
+        const auto k = static_cast<std::size_t>(a.worst);
+        const std::size_t i = id_of(static_cast<std::size_t>(list_.slots().i[k]));
+        const std::size_t j = id_of(static_cast<std::size_t>(list_.slots().j[k]));
+        worst_pair_i_ = static_cast<int>(std::min(i, j));
+        worst_pair_j_ = static_cast<int>(std::max(i, j));
         break;
       }
     std::ostringstream os;
@@ -636,36 +624,6 @@ std::uint64_t DemSolver::state_hash() const {
   h.value(state_.time);
   h.value(state_.step);
   h.value(configuration_hash());
-  return h.digest();
-}
-
-std::uint64_t DemSolver::configuration_hash() const {
-  Fnv1a h;
-  const Particles& P = state_.particles;
-  for (const auto* v : {&P.x, &P.y, &P.vx, &P.vy, &P.w, &P.ax, &P.ay, &P.aw}) h.values(*v);
-  if (depth_)  // a monolayer's hash is what it was before the depth arrays existed
-    for (const auto* v : {&P.z, &P.vz, &P.wx, &P.wy, &P.az, &P.awx, &P.awy}) h.values(*v);
-  // The touching pairs in (i, j) order: the same whatever the skin or the rebuild times.
-  const NeighbourList& L = list_;
-  for (std::size_t k = 0; k < L.size(); ++k) {
-    const PairSlots& S = L.slots();
-    if (!S.touching[k]) continue;
-    h.value(S.i[k]);
-    h.value(S.j[k]);
-    h.value(S.dn[k]);
-    h.value(S.ds[k]);
-    if (depth_) {
-      h.value(S.ds_y[k]);
-      h.value(S.ds_z[k]);
-    }
-  }
-  h.values(state_.walls.active);
-  h.values(state_.walls.dn);
-  h.values(state_.walls.ds);
-  if (depth_) {
-    h.values(state_.walls.ds_y);
-    h.values(state_.walls.ds_z);
-  }
   return h.digest();
 }
 

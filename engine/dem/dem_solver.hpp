@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/permute.hpp"
 #include "core/phase_timer.hpp"
 #include "dem/contact_history.hpp"
 #include "dem/contact_law.hpp"
@@ -35,17 +36,25 @@ struct DemParams {
   double overlap_limit = 0.2;         // overlap ratio treated as a runaway
   bool frozen = false;                // a fixed bed: nothing moves
   int threads = 1;                    // inside a step; 0: one per core
+  // Steps between renumberings of the particles by cell (0: never): see DemSolver::renumber.
+  int renumber_steps = 0;
 };
 
 // Everything that defines where a run is: saved and loaded bit-exactly. The pair history lives
 // in the solver's neighbour list while it runs; `pairs` holds it only when exported (state files)
 // or about to be imported (set_state).
+//
+// An exported state (and a state file) is in the particles' ids: particle k of the arrays, the
+// pairs and the walls is the one placed k-th, whatever order the solver keeps them in. `order`
+// is that order (the id at each of the solver's places; empty: the ids' own), so that a state
+// loaded continues with the same bits.
 struct DemState {
   Particles particles;
   PairContacts pairs;
   WallHistory walls;
   double time = 0.0;  // s
   std::int64_t step = 0;
+  std::vector<std::int32_t> order;
 };
 
 // Measured at every step.
@@ -125,8 +134,40 @@ class DemSolver {
   void set_energy_ledger(const EnergyLedger& l) { ledger_ = l; }
   SpringEnergy spring_energy() const;
 
-  // Replaces the state (a loaded file, its pair history included); the particle count must match.
+  // Replaces the state (an exported one or a loaded file, in ids, its pair history included); the
+  // particle count must match.
   void set_state(DemState s);
+
+  // The particles' numbering. The solver keeps its arrays in an order of its own (particles(),
+  // state(), every per-particle vector it hands out): with renumber_steps, every so many steps it
+  // sorts them by neighbour cell (dem/renumber.cpp), so that a contact's two particles sit close
+  // in memory however the bed has mixed. Each particle keeps its id (the place it was given);
+  // everything that names a particle to a user - tracks, pictures, files, messages - uses ids.
+  bool renumbered() const { return !id_.empty(); }
+  // The id of the particle at place s, and the place of particle `id`.
+  std::size_t id_of(std::size_t s) const {
+    return id_.empty() ? s : static_cast<std::size_t>(id_[s]);
+  }
+  std::size_t place_of(std::size_t id) const {
+    return id_.empty() ? id : static_cast<std::size_t>(place_[id]);
+  }
+  // The id at each place and the place of each id (both empty while they are the same).
+  const std::vector<std::int32_t>& ids() const { return id_; }
+  const std::vector<std::int32_t>& places() const { return place_; }
+  // A per-particle vector of the solver's order in id order, and back (core/permute.hpp).
+  template <class T>
+  void to_ids(const std::vector<T>& v, std::vector<T>& out) const {
+    out = v;
+    if (!id_.empty() && v.size() == id_.size()) gather_by(out, place_);
+  }
+  template <class T>
+  void to_places(std::vector<T>& v) const {
+    if (!id_.empty() && v.size() == id_.size()) gather_by(v, id_);
+  }
+  // Called with the new order (from[s]: the place the particle now at s came from) each time the
+  // solver renumbers, so that per-particle data kept elsewhere (the coupler's) follows.
+  using Renumbered = std::function<void(const std::vector<std::int32_t>& from)>;
+  void on_renumber(Renumbered f) { on_renumber_ = std::move(f); }
   // Time spent per phase since construction (or reset), for the benchmark's split.
   PhaseTimes& phase_times() const { return times_; }
 
@@ -164,6 +205,10 @@ class DemSolver {
   void finish_step();
   void balance(int threads);
   [[noreturn]] void fail(const std::string& what) const;
+  // dem/renumber.cpp: the particles sorted by cell (at the start of a step, every
+  // renumber_steps_), and the conversions between the solver's order and the ids.
+  void renumber();
+  void reorder(const std::vector<std::int32_t>& from);
 
   DemState state_;
   NeighbourList list_;
@@ -225,6 +270,11 @@ class DemSolver {
   std::vector<std::size_t> split_;  // thread t's particles: [split_[t], split_[t + 1]) // a
                                     // particle left the box in the last step
   int worst_pair_i_ = -1, worst_pair_j_ = -1;
+  int renumber_steps_ = 0;
+  double cell_ = 0.0;  // m, the cells of renumber's sort
+  // The id at each place and the place of each id (empty while they are the same).
+  std::vector<std::int32_t> id_, place_;
+  Renumbered on_renumber_;
 };
 
 // Binary state files: magic, version, counts, then raw arrays (bit-exact restart).

@@ -73,8 +73,8 @@ bool NeighbourList::stale(const Particles& p) const {
   return stale(m[0], m[1]);
 }
 
-void NeighbourList::import_history(const PairContacts& saved) {
-  seed_ = saved;
+void NeighbourList::import_history(PairContacts saved) {
+  seed_ = std::move(saved);
   seeded_ = true;
   built_ = false;
 }
@@ -257,7 +257,7 @@ void NeighbourList::merge_seed() {
     }
   }
   seeded_ = false;
-  seed_.clear();
+  seed_ = PairContacts{};  // its memory too (a renumbering imports the whole history)
 }
 
 }  // namespace fluidbed

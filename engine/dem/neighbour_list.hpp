@@ -96,7 +96,7 @@ class NeighbourList {
   // The touching pairs and their displacements, sorted by (i, j).
   void export_history(PairContacts& out) const;
   // Replaces the history with a saved one; the next stale() is true.
-  void import_history(const PairContacts& saved);
+  void import_history(PairContacts saved);
 
   std::size_t size() const { return slots().size(); }
   std::int64_t builds() const { return builds_; }

@@ -14,16 +14,19 @@ namespace {
 
 constexpr char kMagic[8] = {'F', 'L', 'B', 'S', 'T', 'A', 'T', 'E'};
 // Version 2: a monolayer; 3: a thick slab, whose depth arrays and shear vectors follow version
-// 2's contents (so a monolayer's file is the same bytes as before thick slabs existed).
+// 2's contents (so a monolayer's file is the same bytes as before thick slabs existed). 4 and 5:
+// 2 and 3 followed by the solver's order of the particles (DemState::order), for a state saved
+// after the solver renumbered them; the rest is in ids, as in 2 and 3.
 constexpr std::uint32_t kVersion = 2;
 constexpr std::uint32_t kVersionDepth = 3;
+constexpr std::uint32_t kOrdered = 2;  // added to either for a state with an order
 
 }  // namespace
 
 void write_state(std::ostream& out, const DemState& s) {
   out.write(kMagic, sizeof kMagic);
   const auto& P = s.particles;
-  put(out, P.has_depth() ? kVersionDepth : kVersion);
+  put(out, (P.has_depth() ? kVersionDepth : kVersion) + (s.order.empty() ? 0 : kOrdered));
   put(out, static_cast<std::uint64_t>(P.size()));
   put(out, static_cast<std::int32_t>(s.walls.walls));
   put(out, s.time);
@@ -46,6 +49,7 @@ void write_state(std::ostream& out, const DemState& s) {
     put_vec(out, s.walls.ds_y);
     put_vec(out, s.walls.ds_z);
   }
+  if (!s.order.empty()) put_vec(out, s.order);
 }
 
 DemState read_state(std::istream& in, const std::string& origin) {
@@ -54,9 +58,11 @@ DemState read_state(std::istream& in, const std::string& origin) {
   in.read(magic, sizeof magic);
   if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
     throw InputError(origin + ": not a fluidbed state file");
-  const auto version = src.get<std::uint32_t>();
-  if (version != kVersion && version != kVersionDepth)
+  const auto stored = src.get<std::uint32_t>();
+  if (stored < kVersion || stored > kVersionDepth + kOrdered)
     throw InputError(origin + ": state file version is not supported");
+  const bool ordered = stored > kVersionDepth;
+  const std::uint32_t version = ordered ? stored - kOrdered : stored;
   DemState s;
   const auto count = src.get<std::uint64_t>();
   if (count == 0 || count > (1ULL << 31)) src.fail("inconsistent (count)");
@@ -85,11 +91,13 @@ DemState read_state(std::istream& in, const std::string& origin) {
     src.get_vec(s.walls.ds_y, n * walls);
     src.get_vec(s.walls.ds_z, n * walls);
   }
+  if (ordered) src.get_vec(s.order, n);  // a permutation: checked by DemSolver::set_state
   // Pairs: i < j, inside the particle range, sorted by (i, j).
   for (std::size_t k = 0; k < s.pairs.size(); ++k) {
     const auto i = s.pairs.i[k], j = s.pairs.j[k];
-    const bool ordered = k == 0 || s.pairs.i[k - 1] < i || (s.pairs.i[k - 1] == i && s.pairs.j[k - 1] < j);
-    if (i < 0 || i >= j || j >= n || !ordered)
+    const bool sorted =
+        k == 0 || s.pairs.i[k - 1] < i || (s.pairs.i[k - 1] == i && s.pairs.j[k - 1] < j);
+    if (i < 0 || i >= j || j >= n || !sorted)
       throw InputError(origin + ": state file is inconsistent (contact pairs)");
   }
   return s;

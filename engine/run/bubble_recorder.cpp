@@ -76,7 +76,10 @@ void BubbleRecorder::analyse(const Simulation& sim) {
   bubbles_now_ = static_cast<int>(
       std::count_if(f.regions.begin(), f.regions.end(), [](const Bubble& b) { return !b.touches_jet; }));
   regime_now_ = analysis_.regime(t - kRegimeWindow, t);
-  const LaceyResult m = lacey_index(p, kind_, width_, height_);
+  // kind_ is by id (the heights at the start); the particles are in the solver's order.
+  std::vector<std::uint8_t> kind = kind_;
+  sim.dem().to_places(kind);
+  const LaceyResult m = lacey_index(p, kind, width_, height_);
   mixing_.push_back({t, m.ok ? m.index : std::numeric_limits<double>::quiet_NaN()});
 }
 

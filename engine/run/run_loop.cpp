@@ -43,7 +43,7 @@ void check_start(const Simulation& sim) {
   for (std::size_t i = 0; i < p.size(); ++i)
     if (!std::isfinite(p.x[i] + p.y[i] + p.vx[i] + p.vy[i] + p.w[i])) {
       std::ostringstream os;
-      os << "particle " << i << " starts with a non-finite position or velocity (NaN) at t = "
+      os << "particle " << sim.dem().id_of(i) << " starts with a non-finite position or velocity (NaN) at t = "
          << sim.time() << " s";
       throw SimulationFailure(os.str());
     }

@@ -86,6 +86,10 @@ struct ContactSettings {
   // the packing, the paper's bed and the teaching bed: half the rebuilds of 0.2, and the extra
   // candidates cost less than the rebuilds they save).
   double skin = 0.4;
+  // Steps between renumberings of the particles by neighbour cell (DemSolver::renumber): 0 never,
+  // -1 automatic: every kAutoRenumberSteps steps in a bed whose particles' arrays leave the cache
+  // (sim/model_params.hpp). Only the speed and the results' last bits depend on it.
+  int renumber_steps = -1;
 };
 
 struct TimeSettings {
@@ -283,6 +287,9 @@ void visit_fields(ContactSettings& s, V&& v) {
   v("skin", s.skin,
     {"", Range{0.0, 10.0, false, false},
      "neighbour-list skin as a fraction of the largest diameter (speed only; at most 10)"});
+  v("renumber_steps", s.renumber_steps,
+    {"", at_least(-1), "steps between renumberings of the particles by cell (0: never; -1: "
+                       "automatic, in large beds)"});
 }
 template <class V>
 void visit_fields(TimeSettings& s, V&& v) {

@@ -27,6 +27,12 @@ DemParams dem_params_for(const Settings& s) {
   d.thickness = s.domain.thickness;
   d.walls = slab_walls(s.domain, slab_has_depth(s.domain, s.particles.diameter));
   d.skin = s.contact.skin;
+  const double bytes = static_cast<double>(s.particles.count) *
+                       static_cast<double>(Particles::bytes_per_particle(
+                           slab_has_depth(s.domain, s.particles.diameter)));
+  d.renumber_steps = s.contact.renumber_steps >= 0    ? s.contact.renumber_steps
+                     : bytes >= kAutoRenumberBytes ? kAutoRenumberSteps
+                                                   : 0;
   d.overlap_limit = s.diagnostics.overlap_limit;
   d.frozen = s.particles.frozen;
   d.threads = s.threads;

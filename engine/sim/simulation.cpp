@@ -41,12 +41,16 @@ DemSolver make_dem(const Settings& s) {
 
 }  // namespace
 
-Simulation::Simulation(const Settings& s)
-    : settings_(s), dem_(make_dem(s)), initial_y_(dem_.particles().y) {
+Simulation::Simulation(const Settings& s) : settings_(s), dem_(make_dem(s)) {
+  dem_.to_ids(dem_.particles().y, initial_y_);
   if (!s.gas.enabled) return;
   const GasGrid grid = gas_grid_for(s);
   gas_ = std::make_unique<GasSolver>(grid, gas_params_for(s));
   coupler_ = std::make_unique<Coupler>(grid, coupler_params_for(s), particle_count());
+  // The coupler's per-particle data follows the particles when the solver renumbers them (the
+  // coupler is held by pointer: the hook stays valid when the simulation moves).
+  Coupler* coupler = coupler_.get();
+  dem_.on_renumber([coupler](const std::vector<std::int32_t>& from) { coupler->reorder(from); });
   Particles& p = dem_.particles();
   gas_->set_porosity(coupler_->compute_porosity(p, time()));
   coupler_->refresh_cells(*gas_);
@@ -138,6 +142,7 @@ void Simulation::save_state(const std::string& path) const {
     f.gas = gas_->state();
     f.since_gas_step = since_gas_step_;
     coupler_->save(f.coupling);
+    if (dem_.renumbered()) f.coupling.reorder(dem_.places());  // in ids, as the particles
   }
   save_simulation_state(path, f);
 }
@@ -152,6 +157,7 @@ void Simulation::load_state(const std::string& path) {
     gas_->set_state(f.gas);
     since_gas_step_ = f.since_gas_step;
     coupler_->restore(f.coupling, particle_count());
+    if (dem_.renumbered()) coupler_->reorder(dem_.ids());  // from ids to the solver's order
     coupler_->refresh_cells(*gas_);
     gas_speed_ = gas_->max_speed_per_cell();
     // A state saved before its first gas step (the viewer's start) has still gas: the inlet's
@@ -173,7 +179,7 @@ void Simulation::continue_from(const std::string& path) {
     gas_->set_superficial_velocity(settings_.inlet.superficial_velocity);
     note_inlet_speed();
   }
-  initial_y_ = dem_.particles().y;
+  dem_.to_ids(dem_.particles().y, initial_y_);
 }
 
 }  // namespace fluidbed

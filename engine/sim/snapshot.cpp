@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstring>
+#include <utility>
 
 #include "sim/simulation.hpp"
 
@@ -91,23 +92,16 @@ void take_snapshot(const Simulation& sim, Snapshot& out) {
   out.max_overlap_ratio = dem.diagnostics().max_overlap_ratio;
   out.kinetic_energy = dem.diagnostics().kinetic_energy;
   out.contacts = dem.diagnostics().pair_contacts + dem.diagnostics().wall_contacts;
-  out.x = p.x;
-  out.y = p.y;
-  out.z = p.z;
-  out.radius = p.radius;
-  out.vx = p.vx;
-  out.vy = p.vy;
-  out.spin = p.w;
-  out.fx = p.fx;
-  out.fy = p.fy;
-  out.torque = p.torque;
-  out.vz = p.vz;
-  out.fz = p.fz;
-  out.spin_x = p.wx;
-  out.spin_y = p.wy;
-  out.torque_x = p.torque_x;
-  out.torque_y = p.torque_y;
-  out.overlap = dem.particle_overlap();
+  // In ids (the solver may keep its own order: DemSolver::renumbered), so that a particle
+  // picked, tracked or written is the same one from frame to frame.
+  const std::pair<const std::vector<double>*, std::vector<double>*> arrays[] = {
+      {&p.x, &out.x},           {&p.y, &out.y},         {&p.z, &out.z},
+      {&p.radius, &out.radius}, {&p.vx, &out.vx},       {&p.vy, &out.vy},
+      {&p.w, &out.spin},        {&p.fx, &out.fx},       {&p.fy, &out.fy},
+      {&p.torque, &out.torque}, {&p.vz, &out.vz},       {&p.fz, &out.fz},
+      {&p.wx, &out.spin_x},     {&p.wy, &out.spin_y},   {&p.torque_x, &out.torque_x},
+      {&p.torque_y, &out.torque_y}, {&dem.particle_overlap(), &out.overlap}};
+  for (const auto& [from, to] : arrays) dem.to_ids(*from, *to);
   out.initial_y = sim.initial_heights();
   if (const GasSolver* g = sim.gas()) {
     out.inlet_kind = s.inlet.kind;

@@ -17,6 +17,8 @@
 
 #include "../test_support.hpp"
 #include "io/vtk_writer.hpp"
+#include "output/plots.hpp"
+#include "sim/simulation.hpp"
 #include "render_support.hpp"
 
 using namespace fluidbed::testing;
@@ -461,5 +463,40 @@ TEST(RunOutputOptions, BadValuesAreRefusedInOneLine) {
     EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.args << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(dir / "o" / "summary.json")) << c.args;
+  }
+}
+
+TEST(TrackedParticles, AreFollowedByIdWhenTheSolverRenumbers) {
+  // `--plots`' trajectories (Figs 12-13): the particles nearest two points at the start, followed
+  // through renumberings by cell (every 100 steps here) by their ids.
+  fluidbed::Settings s;
+  s.scene.kind = fluidbed::SceneKind::Packing;
+  s.domain.width = 0.06;
+  s.domain.height = 0.2;
+  s.particles.count = 300;
+  s.contact.renumber_steps = 100;
+  fluidbed::Simulation sim(s);
+  const std::vector<int> ids = fluidbed::app::nearest_particles(sim.dem(), {{0.01, 0.02}, {0.05, 0.1}});
+  const fluidbed::Particles start = sim.dem().exported_state().particles;  // in ids
+  const double at[2][2] = {{0.01, 0.02}, {0.05, 0.1}};
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    auto d2 = [&](std::size_t i) {
+      return std::pow(start.x[i] - at[k][0], 2) + std::pow(start.y[i] - at[k][1], 2);
+    };
+    for (std::size_t i = 0; i < start.size(); ++i)
+      ASSERT_GE(d2(i), d2(static_cast<std::size_t>(ids[k])));
+  }
+  fluidbed::app::TrajectoryRecorder tracks(ids, 0.0, s.time.dt);
+  for (int k = 0; k < 2500; ++k) {
+    sim.step();
+    tracks.observe(sim);
+  }
+  ASSERT_TRUE(sim.dem().renumbered());
+  const fluidbed::DemState now = sim.dem().exported_state();
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const fluidbed::app::Trajectory& t = tracks.tracks()[k];
+    ASSERT_EQ(t.x.size(), 2500u);
+    EXPECT_EQ(t.x.back(), now.particles.x[static_cast<std::size_t>(ids[k])]);
+    EXPECT_EQ(t.y.back(), now.particles.y[static_cast<std::size_t>(ids[k])]);
   }
 }

@@ -22,6 +22,17 @@ Settings determinism_bed() {
   return s;
 }
 
+// The same spheres in the paper's column with gas at u (m/s), filled to `fill` (m).
+Settings gas_bed(double fill, double u) {
+  Settings s = determinism_bed();
+  s.domain.width = 0.15;
+  s.domain.height = 0.9;
+  s.particles.fill_height = fill;
+  s.gas.enabled = true;
+  s.inlet.superficial_velocity = u;
+  return s;
+}
+
 std::uint64_t run_steps(Simulation& sim, int n) {
   for (int k = 0; k < n; ++k) sim.step();
   return sim.state_hash();
@@ -61,46 +72,51 @@ TEST(Determinism, SaveLoadContinueIsBitExact) {
 }
 
 TEST(Determinism, CoupledSaveLoadContinueIsBitExact) {
-  // Particles, gas and coupling together: a jetted bed of 300 spheres, gas every other step.
-  Settings s = determinism_bed();
-  s.domain.width = 0.15;
-  s.domain.height = 0.9;
-  s.particles.fill_height = 0.2;
-  s.gas.enabled = true;
-  s.inlet.kind = InletKind::Jet;
-  s.inlet.superficial_velocity = 2.0;
-  s.coupling.particle_steps_per_gas_step = 2;
-  Simulation straight(s);
-  const auto expected = run_steps(straight, 3001);
-  Simulation first(s);
-  run_steps(first, 2001);  // mid-way through a gas sub-step cycle
-  const auto dir = fluidbed::testing::temp_dir("saveload-gas");
-  const std::string path = (dir / "mid.state").string();
-  first.save_state(path);
-  Simulation resumed(s);
-  resumed.load_state(path);
-  EXPECT_EQ(resumed.state_hash(), first.state_hash());
-  EXPECT_EQ(run_steps(resumed, 1000), expected);
+  // Particles, gas and coupling together: a jetted bed of 300 spheres, gas every other step;
+  // as placed, and renumbered by cell every 500 steps (the file then holds the particles' order,
+  // and the resumed run renumbers again: dem/renumber.cpp).
+  for (const int renumber : {0, 500}) {
+    SCOPED_TRACE(renumber);
+    Settings s = gas_bed(0.2, 2.0);
+    s.inlet.kind = InletKind::Jet;
+    s.coupling.particle_steps_per_gas_step = 2;
+    s.contact.renumber_steps = renumber;
+    Simulation straight(s);
+    const auto expected = run_steps(straight, 3001);
+    Simulation first(s);
+    run_steps(first, 2001);  // mid-way through a gas sub-step cycle
+    EXPECT_EQ(first.dem().renumbered(), renumber > 0);
+    const auto dir = fluidbed::testing::temp_dir("saveload-gas");
+    const std::string path = (dir / "mid.state").string();
+    first.save_state(path);
+    Simulation resumed(s);
+    resumed.load_state(path);
+    EXPECT_EQ(resumed.dem().ids(), first.dem().ids());
+    EXPECT_EQ(resumed.state_hash(), first.state_hash());
+    EXPECT_EQ(run_steps(resumed, 1000), expected);
+  }
 }
 
 TEST(Determinism, SameBitsForOneAndTwoThreads) {
   // The particle step gathers pair forces in a fixed order, and sums over particles (energy,
   // porosity, drag per cell) are taken block by block and added in block order: the thread count
-  // changes the speed, not a bit of the result. 600 particles: 10 blocks, split unevenly by work.
-  Settings s = determinism_bed();
-  s.domain.width = 0.15;
-  s.domain.height = 0.9;
-  s.particles.count = 600;
-  s.particles.fill_height = 0.25;
-  s.gas.enabled = true;
-  s.inlet.superficial_velocity = 2.5;
-  s.threads = 1;
-  Simulation one(s);
-  s.threads = 2;
-  Simulation two(s);
-  EXPECT_EQ(two.dem().threads(), 2);
-  EXPECT_EQ(run_steps(one, 1500), run_steps(two, 1500));
-  EXPECT_GT(one.dem().diagnostics().pair_contacts, 20);  // contacts and gas both exercised
+  // changes the speed, not a bit of the result. 600 particles: 10 blocks, split unevenly by work;
+  // as placed, and renumbered by cell every 500 steps (the same order on both).
+  for (const int renumber : {0, 500}) {
+    SCOPED_TRACE(renumber);
+    Settings s = gas_bed(0.25, 2.5);
+    s.particles.count = 600;
+    s.contact.renumber_steps = renumber;
+    s.threads = 1;
+    Simulation one(s);
+    s.threads = 2;
+    Simulation two(s);
+    EXPECT_EQ(two.dem().threads(), 2);
+    EXPECT_EQ(run_steps(one, 1500), run_steps(two, 1500));
+    EXPECT_EQ(one.dem().ids(), two.dem().ids());
+    EXPECT_EQ(one.dem().renumbered(), renumber > 0);
+    EXPECT_GT(one.dem().diagnostics().pair_contacts, 20);  // contacts and gas both exercised
+  }
 }
 
 TEST(Determinism, StateFileRejectsGarbage) {
