@@ -1,10 +1,19 @@
 // Kernels of the particle step: the contact law, a neighbour-grid rebuild, one full step of the
-// packed bed.
+// packed bed, and the step of a wide bed by the particles' numbering.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <string>
+
+#include "per_unit.hpp"
+#include "core/permute.hpp"
 #include "dem/cell_grid.hpp"
 #include "dem/contact_law.hpp"
 #include "scene/settings.hpp"
+#include "sim/model_params.hpp"
+#include "sim/placement.hpp"
 #include "sim/simulation.hpp"
 
 namespace fluidbed {
@@ -52,6 +61,39 @@ void BM_ParticleStep2400(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sim.particle_count()));
 }
 BENCHMARK(BM_ParticleStep2400);
+
+// The particle step (no gas, one thread) of N spheres from the wide bed's lattice start (wide.toml
+// at the paper's fill: a bed 0.15 m wide per 2,400), by how the particles are numbered: 0 along
+// the lattice's strips (as placed), 1 shuffled (a bed mixed as much as it can be), 2 shuffled and
+// renumbered by cell (contact.renumber_steps; its first renumbering before the timing). Time per
+// particle-step (s_per_unit).
+void BM_ParticleNumbering(benchmark::State& state) {
+  const auto n = static_cast<int>(state.range(0));
+  const auto mode = state.range(1);
+  Settings s;
+  s.particles.count = n;
+  s.domain.width = 0.15 * n / 2400.0;
+  Particles p = place_particles(s);
+  if (mode > 0) {
+    std::vector<std::int32_t> order(p.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), std::mt19937_64(1));
+    for (auto* v : p.all_arrays()) gather_by(*v, order);
+  }
+  DemParams d = dem_params_for(s);
+  d.threads = 1;
+  d.renumber_steps = mode == 2 ? 1000 : 0;
+  DemSolver dem(d, std::move(p));
+  dem.step();  // the first neighbour list (and the renumbering) untimed
+  for (auto _ : state) dem.step();
+  const char* how[] = {"along strips", "at random", "at random, then renumbered by cell"};
+  time_per_unit(state, static_cast<double>(n),
+                std::string("per particle-step, numbered ") + how[mode]);
+}
+BENCHMARK(BM_ParticleNumbering)
+    ->ArgsProduct({{24000, 240000}, {0, 1, 2}})
+    ->Iterations(100)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace fluidbed
