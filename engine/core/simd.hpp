@@ -42,4 +42,37 @@ inline bool cpu_runs(SimdBuild b) {
   return false;
 }
 
+// Calls the build b of a kernel, given its three entry points (AVX-512, AVX2, plain x86-64).
+template <class Avx512f, class Avx2, class Baseline, class... Args>
+void call_build(SimdBuild b, Avx512f avx512f, Avx2 avx2, Baseline baseline, const Args&... args) {
+  switch (b) {
+    case SimdBuild::avx512f:
+      return avx512f(args...);
+    case SimdBuild::avx2:
+      return avx2(args...);
+    case SimdBuild::baseline:
+      return baseline(args...);
+  }
+}
+
+// A contact kernel's loops Either(in, out) built for one instruction set each, and the build b
+// of them called. Either must be inlined into each (always_inline) for the build to be its own.
+template <auto Either, class In, class Out>
+FLUIDBED_SIMD_AVX512F void build_avx512f(const In& in, const Out& out) {
+  Either(in, out);
+}
+template <auto Either, class In, class Out>
+FLUIDBED_SIMD_AVX2 void build_avx2(const In& in, const Out& out) {
+  Either(in, out);
+}
+template <auto Either, class In, class Out>
+void build_baseline(const In& in, const Out& out) {
+  Either(in, out);
+}
+template <auto Either, class In, class Out>
+void call_contacts_build(SimdBuild b, const In& in, const Out& out) {
+  call_build(b, build_avx512f<Either, In, Out>, build_avx2<Either, In, Out>,
+             build_baseline<Either, In, Out>, in, out);
+}
+
 }  // namespace fluidbed

@@ -32,10 +32,17 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   wall_params_.mu = d.wall_mu.value_or(d.contact.mu);
   depth_ = particles.has_depth();
   if (params_.hertz && !depth_)  // the monolayer's passes have the linear law only
-    throw InputError("contact.law = \"hertz_mindlin\" needs a thick slab: domain.thickness above "
-                     "particles.diameter");
-  for (std::size_t c = 0; c < walls_.size(); ++c)
-    (walls_[c].nz == 0.0 ? planar_walls_ : depth_walls_).push_back(static_cast<int>(c));
+    throw InputError(
+        "contact.law = \"hertz_mindlin\" needs a thick slab: domain.thickness above "
+        "particles.diameter");
+  for (std::size_t c = 0; c < walls_.size(); ++c) {
+    const Wall& w = walls_[c];
+    (w.nz == 0.0 ? planar_walls_ : depth_walls_).push_back(static_cast<int>(c));
+    wall_nx_.push_back(w.nx);
+    wall_ny_.push_back(w.ny);
+    wall_nz_.push_back(w.nz);
+    wall_offset_.push_back(w.offset);
+  }
   const std::size_t n = particles.size();
   threads_ = resolve_threads(d.threads);
   // A fork costs a microsecond or two: worth it only when a step has real work.
@@ -43,6 +50,14 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
   partial_.assign(static_cast<std::size_t>(threads_), StepPartial{});
   passed_.assign(static_cast<std::size_t>(threads_), {});
   passed_depth_.assign(static_cast<std::size_t>(threads_), {});
+  if (depth_) {
+    wall_chunks_.assign(static_cast<std::size_t>(threads_), {});
+    for (WallChunk& c : wall_chunks_) {
+      c.on.resize(kWallChunk);
+      c.particle.resize(kWallChunk);
+      c.out.resize(kWallChunk, true);
+    }
+  }
   busy_.assign(static_cast<std::size_t>(threads_), ThreadClock{});
   block_ke_.assign(particle_blocks(n), 0.0);
   block_ledger_.assign(particle_blocks(n), EnergyLedger{});
@@ -104,8 +119,8 @@ void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
   const std::int64_t count = list_touching(code, touch, k0, k1, on, max_ratio, worst,
                                            [&](std::int64_t k) { ldn[k] = lds[k] = 0.0; });
   ContactScratch& cs = L.contact_scratch;
-  const PairContactOut out{cs.dn.data() + k0,    cs.ds.data() + k0,      cs.fx.data() + k0,
-                           cs.fy.data() + k0,    cs.ft.data() + k0,      cs.ratio.data() + k0,
+  const PairContactOut out{cs.dn.data() + k0,      cs.ds.data() + k0,       cs.fx.data() + k0,
+                           cs.fy.data() + k0,      cs.ft.data() + k0,       cs.ratio.data() + k0,
                            cs.dashpot.data() + k0, cs.friction.data() + k0, cs.sliding.data() + k0};
   pair_contacts({pk, li, lj, ldn, lds, on, count, params_, Incremental, dtau}, out);
   // Rolling resistance (contact.rolling_friction): a torque per contact, and its loss as friction.
@@ -119,9 +134,9 @@ void DemSolver::pair_pass(int t, std::size_t e, double dtau, StepPartial& acc) {
       const std::int32_t k = listed_slot(on[q]);
       const std::int32_t i = li[k], j = lj[k];
       const double w_rel = w[i] - w[j];
-      roll[q] = rolling_torque(params_.mu_r, r[i] * r[j] / (r[i] + r[j]),
-                               params_.kn * std::max(out.dn[q], 0.0), w_rel, inv_i[i] + inv_i[j],
-                               dtau);
+      roll[q] =
+          rolling_torque(params_.mu_r, r[i] * r[j] / (r[i] + r[j]),
+                         params_.kn * std::max(out.dn[q], 0.0), w_rel, inv_i[i] + inv_i[j], dtau);
       out.friction[q] += std::fabs(roll[q]) * std::fabs(w_rel) * dtau;
     }
   }
@@ -168,7 +183,8 @@ bool DemSolver::particle_pass(int t, std::size_t b, std::size_t e, double dtau, 
   const double* m = a.mass;
   const double g = gravity_;
   for (std::size_t blk = b / kParticleBlock; blk * kParticleBlock < e; ++blk) {
-    const std::size_t i0 = std::max(b, blk * kParticleBlock), i1 = std::min(e, (blk + 1) * kParticleBlock);
+    const std::size_t i0 = std::max(b, blk * kParticleBlock),
+                      i1 = std::min(e, (blk + 1) * kParticleBlock);
     double gas = 0.0;
     for (std::size_t i = i0; i < i1; ++i) {
       fx[i] = efx[i];
@@ -316,8 +332,7 @@ bool DemSolver::after_forces(std::size_t blk, std::size_t i0, std::size_t i1) {
   if (depth_) {
     const Particles& P = state_.particles;
     for (std::size_t i = i0; i < i1; ++i)
-      ke += 0.5 * m[i] * P.vz[i] * P.vz[i] +
-            0.5 * (P.wx[i] * P.wx[i] + P.wy[i] * P.wy[i]) / ii[i];
+      ke += 0.5 * m[i] * P.vz[i] * P.vz[i] + 0.5 * (P.wx[i] * P.wx[i] + P.wy[i] * P.wy[i]) / ii[i];
   }
   block_ke_[blk] = ke;
   // Every particle inside the box (with a radius of slack): branch-free; finish_step looks for
@@ -383,7 +398,8 @@ void DemSolver::balance(int T) {
     for (std::size_t t = 0; t < nT; ++t) {
       const double busy = busy_[t].seconds;
       if (busy > 0.0 && work_[t] > 0.0)
-        speed_[t] = 0.5 * speed_[t] + 0.5 * work_[t] * static_cast<double>(steps_since_balance_) / busy;
+        speed_[t] =
+            0.5 * speed_[t] + 0.5 * work_[t] * static_cast<double>(steps_since_balance_) / busy;
     }
   }
   double speed_sum = 0.0;
@@ -609,7 +625,8 @@ SpringEnergy DemSolver::spring_energy() const {
   const PairSlots& S = list_.slots();
   for (std::size_t k = 0; k < S.size(); ++k)
     if (S.touching[k]) {
-      const double ri = r[static_cast<std::size_t>(S.i[k])], rj = r[static_cast<std::size_t>(S.j[k])];
+      const double ri = r[static_cast<std::size_t>(S.i[k])],
+                   rj = r[static_cast<std::size_t>(S.j[k])];
       add(S.dn[k], sq(S.ds, S.ds_y, S.ds_z, k), ri * rj / (ri + rj));
     }
   const WallHistory& wh = state_.walls;

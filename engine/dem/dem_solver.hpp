@@ -23,9 +23,9 @@ namespace fluidbed {
 // What the particle model needs from a scene, built once from the settings
 // (sim/model_params.hpp: dem_params_for).
 struct DemParams {
-  ContactParams contact;    // eqs 3-7
+  ContactParams contact;          // eqs 3-7
   std::optional<double> wall_mu;  // friction at the walls; unset: contact.mu
-  bool incremental = true;  // eqs 13-17; false: the geometric overlap
+  bool incremental = true;        // eqs 13-17; false: the geometric overlap
   Integrator integrator = Integrator::Newmark;
   double dt = 1.5e-5;                 // s
   double gravity = 9.81;              // m/s^2, along -y
@@ -221,7 +221,7 @@ class DemSolver {
   double dt_;
   double gravity_;
   double width_, height_, thickness_;
-  bool depth_ = false;     // the particles move in three dimensions (Particles::has_depth)
+  bool depth_ = false;             // the particles move in three dimensions (Particles::has_depth)
   std::vector<int> planar_walls_;  // the walls with nz = 0, ascending
   std::vector<int> depth_walls_;   // the front and back walls (a thick slab), ascending
   double overlap_limit_;
@@ -248,10 +248,19 @@ class DemSolver {
     double roll;  // rolling resistance torque on i (-roll on j); 0 without it
   };
   std::vector<std::vector<Push>> passed_;  // per thread: its contacts with j beyond its range
-  struct PushDepth {  // a thick slab's further components of the same contacts
+  struct PushDepth {                       // a thick slab's further components of the same contacts
     double fz, ftx, fty, roll_x, roll_y;
   };
   std::vector<std::vector<PushDepth>> passed_depth_;
+  // A thick slab's wall contacts, per thread, listed and computed kWallChunk at a time
+  // (particle_pass_depth), and the walls as the kernel reads them.
+  static constexpr std::int64_t kWallChunk = 256;
+  struct WallChunk {
+    std::vector<std::int32_t> on, particle;
+    ContactScratch out;
+  };
+  std::vector<WallChunk> wall_chunks_;
+  std::vector<double> wall_nx_, wall_ny_, wall_nz_, wall_offset_;
   // balance(): per thread, the time spent on its own particles since the last balance (padded:
   // each thread writes its own), its measured speed (work units per second, smoothed) and the
   // work of its range.
@@ -261,7 +270,7 @@ class DemSolver {
   std::vector<ThreadClock> busy_;
   std::vector<double> speed_, work_;
   std::int64_t steps_since_balance_ = 0;
-  std::vector<double> block_ke_;      // J, per block of particles (core/threads.hpp)
+  std::vector<double> block_ke_;  // J, per block of particles (core/threads.hpp)
   // The step's energy ledger per block of particles (a pair counts in its first particle's
   // block), summed in block order: the same bits for any thread count.
   std::vector<EnergyLedger> block_ledger_;

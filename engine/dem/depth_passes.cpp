@@ -1,9 +1,9 @@
 // The particle step's two force passes for a thick slab, where particles move in three
 // dimensions: the same structure as the monolayer's (DemSolver::pair_pass, particle_pass, with
 // the same order of summation, so that results are the same bits for any thread count), with the
-// contact law of contact_force_3d and the front and back walls as real contacts. The pair pass
-// runs the law several pairs at a time (dem/pair_kernel.hpp: depth_contacts); the walls use the
-// scalar law.
+// contact law of contact_force_3d and the front and back walls as real contacts. The pairs and
+// the walls run the law several contacts at a time (dem/pair_kernel.hpp: depth_contacts,
+// wall_contacts_depth).
 #include <algorithm>
 #include <cmath>
 
@@ -14,24 +14,6 @@
 
 namespace fluidbed {
 
-namespace {
-
-// One step of a contact whose history is entry k of h (the pair slots or the wall history: dn,
-// ds, ds_y, ds_z): contact_force_3d from the history's shear vector, the new history written back.
-template <class History>
-ContactForce3 advance_contact(History& h, std::size_t k, const ContactParams& params, double dn,
-                              const Vec3& n, const Vec3& vr, double tau, double dtau) {
-  Vec3 shear{h.ds[k], h.ds_y[k], h.ds_z[k]};
-  const ContactForce3 f = contact_force_3d(params, dn, shear, n, vr, tau, dtau);
-  h.dn[k] = dn;
-  h.ds[k] = shear.x;
-  h.ds_y[k] = shear.y;
-  h.ds_z[k] = shear.z;
-  return f;
-}
-
-}  // namespace
-
 // As pair_pass: which pairs touch, the touching slots listed, the law over those
 // (dem/pair_kernel.hpp: depth_contacts, several pairs at a time) into the compact scratch, then in
 // slot order their history back to the slots, the diagnostics, the ledger and the contacts passed
@@ -39,9 +21,9 @@ ContactForce3 advance_contact(History& h, std::size_t k, const ContactParams& pa
 void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremental,
                                 StepPartial& acc) {
   const Particles& P = state_.particles;
-  const DepthKernelParticles pk{P.x.data(),  P.y.data(),      P.z.data(),          P.vx.data(),
-                                P.vy.data(), P.vz.data(),     P.wx.data(),         P.wy.data(),
-                                P.w.data(),  P.radius.data(), P.inv_inertia.data(),  P.mass.data()};
+  const DepthKernelParticles pk{P.x.data(),  P.y.data(),      P.z.data(),           P.vx.data(),
+                                P.vy.data(), P.vz.data(),     P.wx.data(),          P.wy.data(),
+                                P.w.data(),  P.radius.data(), P.inv_inertia.data(), P.mass.data()};
   NeighbourList& L = list_;
   PairSlots& S = L.slots();
   const std::int64_t k0 = acc.k0, k1 = S.first_begin[e];
@@ -163,58 +145,82 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
   }
   // Walls: the planar ones for the particles that can reach one before the next neighbour-list
   // build, then the front and back walls for every particle (a thick slab is a few diameters
-  // deep: most of its particles are within reach of one of them).
+  // deep: most of its particles are within reach of one of them). The touching ones are listed
+  // in that order a chunk at a time, their law computed by the kernel (dem/pair_kernel.hpp:
+  // wall_contacts_depth) and added in the same order.
   WallHistory& wh = state_.walls;
-  const int nw = static_cast<int>(walls_.size());
+  const auto nw = static_cast<std::int32_t>(walls_.size());
+  WallChunk& chunk = wall_chunks_[static_cast<std::size_t>(t)];
+  ContactScratch& cs = chunk.out;
+  const DepthContactOut out{
+      cs.dn.data(),       cs.ds.data(),     cs.ds_y.data(), cs.ds_z.data(),  cs.fx.data(),
+      cs.fy.data(),       cs.fz.data(),     cs.ftx.data(),  cs.fty.data(),   cs.ft.data(),
+      cs.roll_x.data(),   cs.roll_y.data(), cs.roll.data(), cs.ratio.data(), cs.dashpot.data(),
+      cs.friction.data(), cs.sliding.data()};
+  WallContactIn in{{x, y, z, vx, vy, vz, wx, wy, wz, r, inv_i, m},
+                   chunk.on.data(),
+                   chunk.particle.data(),
+                   0,
+                   nw,
+                   wall_nx_.data(),
+                   wall_ny_.data(),
+                   wall_nz_.data(),
+                   wall_offset_.data(),
+                   wh.dn.data(),
+                   wh.ds.data(),
+                   wh.ds_y.data(),
+                   wh.ds_z.data(),
+                   wall_params_,
+                   incremental,
+                   dtau};
   double max_wall_ratio = 0.0;
   BlockLedger wall_ledger(block_ledger_.data());
   int wall_contacts = 0, sliding = 0;
-  auto wall_contact = [&](std::size_t i, int c) {
+  std::int64_t listed = 0;
+  auto add_chunk = [&] {
+    in.count = listed;
+    wall_contacts_depth(in, out);
+    for (std::int64_t q = 0; q < listed; ++q) {
+      const auto i = static_cast<std::size_t>(chunk.particle[q]);
+      const auto s = static_cast<std::size_t>(listed_slot(chunk.on[q]));
+      wh.dn[s] = out.dn[q];
+      wh.ds[s] = out.ds[q];
+      wh.ds_y[s] = out.ds_y[q];
+      wh.ds_z[s] = out.ds_z[q];
+      wall_ledger.add(i, 0.0, ContactLoss{out.dashpot[q], out.friction[q]});
+      fx[i] += out.fx[q];
+      fy[i] += out.fy[q];
+      fz[i] += out.fz[q];
+      tx[i] += r[i] * out.lever_x[q] + out.roll_x[q];
+      ty[i] += r[i] * out.lever_y[q] + out.roll_y[q];
+      tz[i] += r[i] * out.lever_z[q] + out.roll_z[q];
+      sliding += out.sliding[q];
+      max_wall_ratio = std::max(max_wall_ratio, out.ratio[q]);
+      ov[i] = std::max(ov[i], 0.5 * out.ratio[q]);
+    }
+    wall_contacts += static_cast<int>(listed);
+    listed = 0;
+  };
+  // Sphere i against wall c: listed when they touch (~s the first time); apart, a contact that
+  // has just ended leaves no history.
+  auto list_wall = [&](std::size_t i, int c) {
     const Wall& wall = walls_[static_cast<std::size_t>(c)];
     const std::size_t s = i * static_cast<std::size_t>(nw) + static_cast<std::size_t>(c);
     const double d = wall.nx * x[i] + wall.ny * y[i] + wall.nz * z[i] - wall.offset;
-    if (!(d < r[i])) {  // apart: a contact that has just ended leaves no history
-      if (wh.active[s]) {
-        wh.active[s] = 0;
-        wh.dn[s] = wh.ds[s] = wh.ds_y[s] = wh.ds_z[s] = 0.0;
-      }
-      return;
-    }
-    const bool fresh = !wh.active[s];
-    wh.active[s] = 1;
-    const Vec3 n{-wall.nx, -wall.ny, -wall.nz};  // from the particle into the wall
-    const double overlap = r[i] - d;
-    const Vec3 spin{wx[i], wy[i], wz[i]};
-    const Vec3 vr = Vec3{vx[i], vy[i], vz[i]} + r[i] * cross(spin, n);
-    const double vn = dot(vr, n);
-    double tau = dtau;
-    if (fresh && incremental) tau = std::min(time_since_touch_wall(overlap, vn), dtau);
-    const double dn = incremental ? wh.dn[s] + vn * tau : overlap;
-    // Hertz-Mindlin at a wall of the particles' material: R* = R_i, m* = m_i.
-    const ContactParams law = wall_params_.hertz ? hertz_params(wall_params_, dn, r[i], m[i])
-                                                 : wall_params_;
-    ContactForce3 f = advance_contact(wh, s, law, dn, n, vr, tau, dtau);
-    Vec3 roll;
-    if (wall_params_.mu_r > 0.0) {
-      roll = rolling_torque_3d(wall_params_.mu_r, r[i], f.fn_spring, spin, inv_i[i], dtau);
-      f.loss.friction += std::sqrt(dot(roll, roll) * dot(spin, spin)) * dtau;
-    }
-    wall_ledger.add(i, 0.0, f.loss);
-    fx[i] += f.force.x;
-    fy[i] += f.force.y;
-    fz[i] += f.force.z;
-    tx[i] += r[i] * f.lever.x + roll.x;
-    ty[i] += r[i] * f.lever.y + roll.y;
-    tz[i] += r[i] * f.lever.z + roll.z;
-    sliding += f.sliding;
-    max_wall_ratio = std::max(max_wall_ratio, overlap / r[i]);
-    ov[i] = std::max(ov[i], 0.5 * overlap / r[i]);
-    ++wall_contacts;
+    const int touching = d < r[i], was = wh.active[s];
+    if (was & (touching ^ 1)) wh.dn[s] = wh.ds[s] = wh.ds_y[s] = wh.ds_z[s] = 0.0;
+    wh.active[s] = static_cast<std::uint8_t>(touching);
+    chunk.on[static_cast<std::size_t>(listed)] =
+        static_cast<std::int32_t>(s) ^ -(touching & (was ^ 1));
+    chunk.particle[static_cast<std::size_t>(listed)] = static_cast<std::int32_t>(i);
+    listed += touching;
+    if (listed == kWallChunk) add_chunk();
   };
   for (const std::int32_t ni : near_wall_[static_cast<std::size_t>(t)])
-    for (const int c : planar_walls_) wall_contact(static_cast<std::size_t>(ni), c);
+    for (const int c : planar_walls_) list_wall(static_cast<std::size_t>(ni), c);
   for (std::size_t i = b; i < e; ++i)
-    for (const int c : depth_walls_) wall_contact(i, c);
+    for (const int c : depth_walls_) list_wall(i, c);
+  add_chunk();
   return finish_particle_pass(b, e, wall_contacts, sliding, max_wall_ratio, acc);
 }
 

@@ -57,9 +57,9 @@ void classify_pairs_on(SimdBuild b, const PairKernelParticles& p, const std::int
                        std::uint8_t* code);
 void pair_contacts_on(SimdBuild b, const PairContactIn& in, const PairContactOut& out);
 
-// A thick slab's kernels (dem/depth_passes.cpp): the same two steps in three dimensions, the law
-// of contact_force_3d with the rolling resistance of rolling_torque_3d, the operations in their
-// order. The particles' arrays they read:
+// A thick slab's kernels (dem/depth_kernel.cpp, used by dem/depth_passes.cpp): the same two
+// steps in three dimensions, the law of contact_force_3d with the rolling resistance of
+// rolling_torque_3d, the operations in their order. The particles' arrays they read:
 struct DepthKernelParticles {
   const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *inv_inertia;
   const double* mass = nullptr;  // read by the Hertz-Mindlin law only
@@ -85,7 +85,27 @@ struct DepthContactOut {
 };
 void depth_contacts(const DepthContactIn& in, const DepthContactOut& out);
 
-// Each build of the two (for the tests, as classify_pairs_on).
+// The contacts of a thick slab's spheres with its walls (the bottom, sides and lid and the front
+// and back walls; dem/walls.hpp), listed in on[0 .. count) by the walls' history entry
+// s = i * walls + c of sphere i = particle[q] and wall c (~s for a contact that touches for the
+// first time, whose history the caller clears): the law of the pairs with R* = R_i, m* = m_i
+// and the wall at rest, the rolling resistance against the sphere's spin. Writes per contact what
+// depth_contacts writes, with the ratio overlap / R_i.
+struct WallContactIn {
+  DepthKernelParticles p;
+  const std::int32_t *on, *particle;
+  std::int64_t count;
+  std::int32_t walls;
+  const double *nx, *ny, *nz, *offset;  // per wall: its inward unit normal and offset (m)
+  const double *dn, *ds, *ds_y, *ds_z;  // the walls' history, by entry s
+  ContactParams params;                 // the walls' law
+  bool incremental;
+  double dtau;  // s
+};
+void wall_contacts_depth(const WallContactIn& in, const DepthContactOut& out);
+
+// Each build of the three (for the tests, as classify_pairs_on).
+void wall_contacts_depth_on(SimdBuild b, const WallContactIn& in, const DepthContactOut& out);
 void classify_pairs_depth_on(SimdBuild b, const DepthKernelParticles& p, const std::int32_t* li,
                              const std::int32_t* lj, std::int64_t k0, std::int64_t k1,
                              std::uint8_t* code);

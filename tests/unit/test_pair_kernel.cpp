@@ -286,8 +286,8 @@ struct DepthPairs {
   std::vector<std::int32_t> on;
 
   fluidbed::DepthKernelParticles particles() const {
-    return {x.data(),  y.data(),  z.data(),  vx.data(),    vy.data(),   vz.data(),
-            wx.data(), wy.data(), wz.data(), r.data(),     inv_i.data(), mass.data()};
+    return {x.data(),  y.data(),  z.data(),  vx.data(), vy.data(),    vz.data(),
+            wx.data(), wy.data(), wz.data(), r.data(),  inv_i.data(), mass.data()};
   }
 };
 
@@ -499,6 +499,171 @@ TEST(PairKernel, EveryBuildGivesTheScalar3dContactLawToTheBit) {
                                       incremental,   2e-5,        s.ds_y.data(), s.ds_z.data()};
     fluidbed::depth_contacts(in, a.out());
     fluidbed::depth_contacts_on(SimdBuild::baseline, in, c.out());
+    for (std::size_t k = 0; k < a.v.size(); ++k)
+      ASSERT_EQ(bits_of(a.v[k]), bits_of(c.v[k])) << "value " << k;
+    EXPECT_EQ(a.sliding, c.sliding);
+  }
+}
+
+namespace {
+
+// Random contacts of spheres with the six walls of a thick slab (dem/walls.hpp: bottom, left,
+// right, front, back, lid), as the particle pass lists them: sphere q against wall q % 6, its
+// centre 0.2 to 1 radius from the wall (a few at the radius to rounding's side inside), random
+// velocities and spins, and the wall history of entry s = q * 6 + c as random_depth_pairs draws a
+// pair's (random, zero, or along the normal).
+struct WallContacts {
+  DepthPairs spheres;  // li, lj, dn and the shear unused: the history is by entry
+  std::vector<double> nx, ny, nz, offset;
+  std::vector<double> dn, ds, ds_y, ds_z;  // by entry
+  std::vector<std::int32_t> on, particle;
+  static constexpr std::int32_t kWalls = 6;
+};
+
+WallContacts random_wall_contacts(std::size_t n, std::uint64_t seed) {
+  const double W = 0.09, H = 0.5, T = 0.008;
+  WallContacts s;
+  s.nx = {0.0, 1.0, -1.0, 0.0, 0.0, 0.0};
+  s.ny = {1.0, 0.0, 0.0, 0.0, 0.0, -1.0};
+  s.nz = {0.0, 0.0, 0.0, 1.0, -1.0, 0.0};
+  s.offset = {0.0, 0.0, -W, 0.0, -T, -H};
+  // The spheres' radii, velocities, spins and masses from random_depth_pairs' first particles.
+  s.spheres = random_depth_pairs(n, seed);
+  DepthPairs& p = s.spheres;
+  std::mt19937_64 rng(seed + 1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const std::size_t entries = 2 * n * static_cast<std::size_t>(WallContacts::kWalls);
+  s.dn.assign(entries, 0.0);
+  s.ds.assign(entries, 0.0);
+  s.ds_y.assign(entries, 0.0);
+  s.ds_z.assign(entries, 0.0);
+  for (std::size_t q = 0; q < n; ++q) {
+    const std::size_t i = 2 * q, c = q % WallContacts::kWalls;
+    const double r = p.r[i];
+    const double d = q % 97 == 5 ? std::nextafter(r, 0.0) : r * (0.2 + 0.8 * u(rng));
+    p.x[i] = 0.3 * W + 0.4 * W * u(rng);
+    p.y[i] = 0.3 * H + 0.4 * H * u(rng);
+    p.z[i] = 0.5 * T;
+    double* along[6] = {&p.y[i], &p.x[i], &p.x[i], &p.z[i], &p.z[i], &p.y[i]};
+    *along[c] = c == 2 ? W - d : c == 4 ? T - d : c == 5 ? H - d : d;
+    const std::size_t e = i * static_cast<std::size_t>(WallContacts::kWalls) + c;
+    const int kind = static_cast<int>(q % 11);
+    const double a = 2e-4 * u(rng) - 1e-4;
+    s.dn[e] = 1.2e-4 * u(rng) - 2e-5;
+    if (kind == 1) {  // along the normal: nothing in the plane
+      s.ds[e] = a * s.nx[c];
+      s.ds_y[e] = a * s.ny[c];
+      s.ds_z[e] = a * s.nz[c];
+    } else if (kind != 0) {
+      s.ds[e] = a;
+      s.ds_y[e] = 2e-4 * u(rng) - 1e-4;
+      s.ds_z[e] = 2e-4 * u(rng) - 1e-4;
+    }
+    const auto entry = static_cast<std::int32_t>(e);
+    const bool fresh = u(rng) < 0.3;
+    if (fresh) s.dn[e] = s.ds[e] = s.ds_y[e] = s.ds_z[e] = 0.0;  // as the pass clears it
+    s.on.push_back(fresh ? ~entry : entry);
+    s.particle.push_back(static_cast<std::int32_t>(i));
+  }
+  return s;
+}
+
+// Contact q as DemSolver::particle_pass_depth computed it before the kernel: the contact point's
+// velocity, time_since_touch_wall for a new contact, hertz_params with R_i and m_i,
+// contact_force_3d, rolling_torque_3d against the sphere's spin and its loss.
+DepthContact scalar_wall_contact(const WallContacts& s, std::size_t q, const ContactParams& p,
+                                 bool incremental, double dtau) {
+  using fluidbed::Vec3;
+  const DepthPairs& P = s.spheres;
+  const bool fresh = s.on[q] < 0;
+  const auto e = static_cast<std::size_t>(fresh ? ~s.on[q] : s.on[q]);
+  const auto i = static_cast<std::size_t>(s.particle[q]);
+  const std::size_t c = e - i * static_cast<std::size_t>(WallContacts::kWalls);
+  const double d = s.nx[c] * P.x[i] + s.ny[c] * P.y[i] + s.nz[c] * P.z[i] - s.offset[c];
+  const Vec3 n{-s.nx[c], -s.ny[c], -s.nz[c]};
+  const double overlap = P.r[i] - d;
+  const Vec3 spin{P.wx[i], P.wy[i], P.wz[i]};
+  const Vec3 vr = Vec3{P.vx[i], P.vy[i], P.vz[i]} + P.r[i] * fluidbed::cross(spin, n);
+  const double vn = fluidbed::dot(vr, n);
+  double tau = dtau;
+  if (fresh && incremental) tau = std::min(fluidbed::time_since_touch_wall(overlap, vn), dtau);
+  const double dn = incremental ? s.dn[e] + vn * tau : overlap;
+  const ContactParams law = p.hertz ? fluidbed::hertz_params(p, dn, P.r[i], P.mass[i]) : p;
+  Vec3 shear{s.ds[e], s.ds_y[e], s.ds_z[e]};
+  fluidbed::ContactForce3 f = fluidbed::contact_force_3d(law, dn, shear, n, vr, tau, dtau);
+  Vec3 roll;
+  if (p.mu_r > 0.0) {
+    roll = fluidbed::rolling_torque_3d(p.mu_r, P.r[i], f.fn_spring, spin, P.inv_i[i], dtau);
+    f.loss.friction += std::sqrt(fluidbed::dot(roll, roll) * fluidbed::dot(spin, spin)) * dtau;
+  }
+  return {{dn, shear.x, shear.y, shear.z, f.force.x, f.force.y, f.force.z, f.lever.x, f.lever.y,
+           f.lever.z, roll.x, roll.y, roll.z, overlap / P.r[i], f.loss.dashpot, f.loss.friction},
+          f.sliding ? 1 : 0};
+}
+
+}  // namespace
+
+// The walls' kernel against the scalar law to the bit, every wall, both displacement forms,
+// with and without rolling resistance, linear and Hertz-Mindlin laws, every build.
+TEST(PairKernel, EveryBuildGivesTheScalarWallContactLawToTheBit) {
+  const WallContacts s = random_wall_contacts(4099, 9);
+  const std::vector<ContactParams> laws = [] {
+    std::vector<ContactParams> l = {
+        {50000.0, 50000.0, 0.15, 0.15, 0.3, 0.0},      // the paper's
+        {624.0, 624.0, 0.00176, 0.00176, 0.3, 0.025},  // van Wachem's, rolling resistance
+        {50000.0, 0.0, 0.15, 0.15, 0.3, 0.1},          // no tangential spring
+        {50000.0, 50000.0, 0.15, 0.15, 0.0, 0.0},      // frictionless
+    };
+    ContactParams h{0.0, 0.0, 0.0, 0.0, 0.3, 0.025};
+    fluidbed::set_hertz(h, 1.0e7, 0.3, 0.9);
+    l.push_back(h);
+    return l;
+  }();
+  const auto count = static_cast<std::int64_t>(s.on.size());
+  const auto n = static_cast<std::size_t>(count);
+  int sliding = 0, sticking = 0, fresh = 0, rolling = 0, turned = 0, hertz = 0;
+  std::array<int, WallContacts::kWalls> per_wall{};
+  auto input = [&](const ContactParams& law, bool incremental, double dtau) {
+    return fluidbed::WallContactIn{
+        s.spheres.particles(), s.on.data(), s.particle.data(), count,
+        WallContacts::kWalls,  s.nx.data(), s.ny.data(),       s.nz.data(),
+        s.offset.data(),       s.dn.data(), s.ds.data(),       s.ds_y.data(),
+        s.ds_z.data(),         law,         incremental,       dtau};
+  };
+  const int builds = for_every_build_law_and_form(
+      laws.size(), [&](SimdBuild b, std::size_t law, bool incremental, double dtau) {
+        DepthOutputs got(n);
+        fluidbed::wall_contacts_depth_on(b, input(laws[law], incremental, dtau), got.out());
+        for (std::size_t q = 0; q < n; ++q) {
+          const DepthContact want = scalar_wall_contact(s, q, laws[law], incremental, dtau);
+          for (int field = 0; field < 16; ++field)
+            ASSERT_EQ(bits_of(got.f(field)[q]), bits_of(want.v[static_cast<std::size_t>(field)]))
+                << "field " << field << ", contact " << q;
+          ASSERT_EQ(got.sliding[q], want.sliding) << "contact " << q;
+          sliding += want.sliding;
+          sticking += 1 - want.sliding;
+          fresh += s.on[q] < 0;
+          rolling += want.v[10] != 0.0;
+          turned += s.on[q] >= 0 && s.ds[static_cast<std::size_t>(s.on[q])] != 0.0;
+          hertz += laws[law].hertz && want.v[4] != 0.0;
+          ++per_wall[q % WallContacts::kWalls];
+        }
+      });
+  EXPECT_GE(builds, 1);
+  EXPECT_GT(sliding, 1000);
+  EXPECT_GT(sticking, 1000);
+  EXPECT_GT(fresh, 1000);
+  EXPECT_GT(rolling, 1000);
+  EXPECT_GT(turned, 1000);
+  EXPECT_GT(hertz, 1000);
+  for (const int k : per_wall) EXPECT_GT(k, 1000);
+
+  // The build the loader chose gives the baseline's bits.
+  for (const bool incremental : {true, false}) {
+    DepthOutputs a(n), c(n);
+    fluidbed::wall_contacts_depth(input(laws[1], incremental, 2e-5), a.out());
+    fluidbed::wall_contacts_depth_on(SimdBuild::baseline, input(laws[1], incremental, 2e-5),
+                                     c.out());
     for (std::size_t k = 0; k < a.v.size(); ++k)
       ASSERT_EQ(bits_of(a.v[k]), bits_of(c.v[k])) << "value " << k;
     EXPECT_EQ(a.sliding, c.sliding);
