@@ -1,5 +1,7 @@
 #include "dem/integrators.hpp"
 
+#include "core/simd.hpp"
+
 namespace fluidbed {
 
 namespace {
@@ -7,13 +9,16 @@ namespace {
 // The depth arrays of a thick slab (Particles::has_depth) go through the same formulas as x and
 // w, component by component, in a loop of their own so that the monolayer's loops stay as they
 // were: z from vz and az, the spin about x and y from their rates.
-void predict_depth(Integrator integrator, double h, Particles& P, std::size_t b, std::size_t e) {
+__attribute__((always_inline)) inline void predict_depth(Integrator integrator, double h,
+                                                         Particles& P, std::size_t b,
+                                                         std::size_t e) {
   double *z = P.z.data(), *vz = P.vz.data(), *az = P.az.data();
   double *wx = P.wx.data(), *wy = P.wy.data();
   const double *awx = P.awx.data(), *awy = P.awy.data();
   switch (integrator) {
     case Integrator::Newmark: {
       const double hh4 = 0.25 * h * h;
+#pragma omp simd
       for (std::size_t i = b; i < e; ++i) {
         z[i] += h * vz[i] + hh4 * az[i];
         vz[i] += 0.5 * h * az[i];
@@ -23,6 +28,7 @@ void predict_depth(Integrator integrator, double h, Particles& P, std::size_t b,
       break;
     }
     case Integrator::VelocityVerlet:
+#pragma omp simd
       for (std::size_t i = b; i < e; ++i) {
         vz[i] += 0.5 * h * az[i];
         wx[i] += 0.5 * h * awx[i];
@@ -35,47 +41,61 @@ void predict_depth(Integrator integrator, double h, Particles& P, std::size_t b,
   }
 }
 
-void correct_depth(Integrator integrator, double h, Particles& P, std::size_t b, std::size_t e) {
+__attribute__((always_inline)) inline void correct_depth(Integrator integrator, double h,
+                                                         Particles& P, std::size_t b,
+                                                         std::size_t e) {
   double *z = P.z.data(), *vz = P.vz.data(), *az = P.az.data();
   double *wx = P.wx.data(), *wy = P.wy.data(), *awx = P.awx.data(), *awy = P.awy.data();
   const double *fz = P.fz.data(), *tx = P.torque_x.data(), *ty = P.torque_y.data();
   const double *im = P.inv_mass.data(), *ii = P.inv_inertia.data();
   const double hh4 = 0.25 * h * h;
+  // The new accelerations, then one loop per integrator (no branch inside a loop).
+#pragma omp simd
   for (std::size_t i = b; i < e; ++i) {
-    const double azi = fz[i] * im[i], awxi = tx[i] * ii[i], awyi = ty[i] * ii[i];
-    switch (integrator) {
-      case Integrator::Newmark:
-        vz[i] += 0.5 * h * azi;
-        wx[i] += 0.5 * h * awxi;
-        wy[i] += 0.5 * h * awyi;
-        z[i] += hh4 * azi;
-        break;
-      case Integrator::VelocityVerlet:
-        vz[i] += 0.5 * h * azi;
-        wx[i] += 0.5 * h * awxi;
-        wy[i] += 0.5 * h * awyi;
-        break;
-      case Integrator::SymplecticEuler:
-        vz[i] += h * azi;
-        wx[i] += h * awxi;
-        wy[i] += h * awyi;
+    az[i] = fz[i] * im[i];
+    awx[i] = tx[i] * ii[i];
+    awy[i] = ty[i] * ii[i];
+  }
+  switch (integrator) {
+    case Integrator::Newmark:
+#pragma omp simd
+      for (std::size_t i = b; i < e; ++i) {
+        vz[i] += 0.5 * h * az[i];
+        wx[i] += 0.5 * h * awx[i];
+        wy[i] += 0.5 * h * awy[i];
+        z[i] += hh4 * az[i];
+      }
+      break;
+    case Integrator::VelocityVerlet:
+#pragma omp simd
+      for (std::size_t i = b; i < e; ++i) {
+        vz[i] += 0.5 * h * az[i];
+        wx[i] += 0.5 * h * awx[i];
+        wy[i] += 0.5 * h * awy[i];
+      }
+      break;
+    case Integrator::SymplecticEuler:
+#pragma omp simd
+      for (std::size_t i = b; i < e; ++i) {
+        vz[i] += h * az[i];
+        wx[i] += h * awx[i];
+        wy[i] += h * awy[i];
         z[i] += h * vz[i];
-        break;
-    }
-    az[i] = azi;
-    awx[i] = awxi;
-    awy[i] = awyi;
+      }
+      break;
   }
 }
 
 }  // namespace
 
-void predict(Integrator integrator, double h, Particles& P, std::size_t b, std::size_t e) {
+FLUIDBED_SIMD_CLONES void predict(Integrator integrator, double h, Particles& P, std::size_t b,
+                                  std::size_t e) {
   if (P.has_depth()) predict_depth(integrator, h, P, b, e);
   const auto a = P.arrays();
   switch (integrator) {
     case Integrator::Newmark: {
       const double hh4 = 0.25 * h * h;
+#pragma omp simd
       for (std::size_t i = b; i < e; ++i) {
         a.x[i] += h * a.vx[i] + hh4 * a.ax[i];
         a.y[i] += h * a.vy[i] + hh4 * a.ay[i];
@@ -86,6 +106,7 @@ void predict(Integrator integrator, double h, Particles& P, std::size_t b, std::
       break;
     }
     case Integrator::VelocityVerlet:  // kick half, drift, forces with the half-step velocity
+#pragma omp simd
       for (std::size_t i = b; i < e; ++i) {
         a.vx[i] += 0.5 * h * a.ax[i];
         a.vy[i] += 0.5 * h * a.ay[i];
@@ -99,12 +120,14 @@ void predict(Integrator integrator, double h, Particles& P, std::size_t b, std::
   }
 }
 
-void correct(Integrator integrator, double h, Particles& P, std::size_t b, std::size_t e) {
+FLUIDBED_SIMD_CLONES void correct(Integrator integrator, double h, Particles& P, std::size_t b,
+                                  std::size_t e) {
   if (P.has_depth()) correct_depth(integrator, h, P, b, e);
   const auto a = P.arrays();
   switch (integrator) {
     case Integrator::Newmark: {
       const double hh4 = 0.25 * h * h;
+#pragma omp simd
       for (std::size_t i = b; i < e; ++i) {
         const double axi = a.fx[i] * a.inv_mass[i], ayi = a.fy[i] * a.inv_mass[i];
         const double awi = a.torque[i] * a.inv_inertia[i];
@@ -120,6 +143,7 @@ void correct(Integrator integrator, double h, Particles& P, std::size_t b, std::
       break;
     }
     case Integrator::VelocityVerlet:
+#pragma omp simd
       for (std::size_t i = b; i < e; ++i) {
         a.ax[i] = a.fx[i] * a.inv_mass[i];
         a.ay[i] = a.fy[i] * a.inv_mass[i];
@@ -130,6 +154,7 @@ void correct(Integrator integrator, double h, Particles& P, std::size_t b, std::
       }
       break;
     case Integrator::SymplecticEuler:
+#pragma omp simd
       for (std::size_t i = b; i < e; ++i) {
         a.ax[i] = a.fx[i] * a.inv_mass[i];
         a.ay[i] = a.fy[i] * a.inv_mass[i];
