@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "cfd/gas_grid.hpp"
+#include "core/permute.hpp"
 #include "coupling/block_sums.hpp"
 #include "coupling/porosity.hpp"
-#include "core/permute.hpp"
 #include "coupling/void_fraction_smoothing.hpp"
 #include "dem/particles.hpp"
 
@@ -23,22 +23,22 @@ class GasSolver;
 // What the coupler needs from a scene, built once from the settings
 // (sim/model_params.hpp: coupler_params_for).
 struct CouplerParams {
-  double gas_density = 1.205;      // kg/m^3
-  double gas_viscosity = 1.8e-5;   // Pa s
+  double gas_density = 1.205;     // kg/m^3
+  double gas_viscosity = 1.8e-5;  // Pa s
   // Model A (model.md 2.1): the particles feel drag and -V grad p; false: drag alone.
   bool pressure_gradient_force = true;
   // m: the void fraction smoothed over this length (coupling/void_fraction_smoothing.hpp);
   // 0: each cell's exact share (eq 22).
   double smoothing_length = 0.0;
-  int threads = 1;                 // inside a step; 0: one per core
+  int threads = 1;  // inside a step; 0: one per core
 };
 
 // The coupler's part of a saved state (bit-exact restarts mid-run).
 struct CouplingState {
-  std::vector<double> eps;                            // per cell
-  std::vector<int> cell;                              // per particle, frozen at the last gas step
+  std::vector<double> eps;  // per cell
+  std::vector<int> cell;    // per particle, frozen at the last gas step
   std::vector<double> beta, gas_ux, gas_uy, base_fx, base_fy;  // idem
-  std::vector<double> drag_x, drag_y, sum_x, sum_y;   // per particle: last drag, summed drag
+  std::vector<double> drag_x, drag_y, sum_x, sum_y;  // per particle: last drag, summed drag
   int accumulated = 0;
   // The per-particle arrays reordered: the particle at from[s] moves to s (the particles'
   // renumbering, DemSolver::on_renumber; core/permute.hpp).
@@ -128,14 +128,14 @@ class Coupler {
   void finish_interaction_force(std::vector<double>& fx, std::vector<double>& fy, double& total_x,
                                 double& total_y);
 
-  BlockCellSums sums_;       // per-cell sums over particles, block by block: solid volume
+  BlockCellSums sums_;  // per-cell sums over particles, block by block: solid volume
   // The porosity's and the drag's per-particle scratch is filled and used a chunk of this many
   // particles at a time (a multiple of kParticleBlock): sized for a chunk, not for every
   // particle, it no longer grows with the bed (84 bytes a particle, 7 % of the 240,000-sphere
   // bed's peak memory; docs/speed.md).
   static constexpr std::size_t kChunk = 256;
   std::vector<ShareGeometry> geometry_;  // per thread: scratch of the porosity, kChunk particles
-  BlockCellSums drag_sums_;  // idem: drag
+  BlockCellSums drag_sums_;              // idem: drag
   std::vector<double> cell_ux_, cell_uy_, cell_gx_, cell_gy_, ln_eps_;  // per cell
   std::vector<double> solid_;
   std::optional<VoidFractionSmoother> smoother_;  // CouplerParams::smoothing_length > 0

@@ -157,8 +157,12 @@ class DemSolver {
   // A per-particle vector of the solver's order in id order, and back (core/permute.hpp).
   template <class T>
   void to_ids(const std::vector<T>& v, std::vector<T>& out) const {
-    out = v;
-    if (!id_.empty() && v.size() == id_.size()) gather_by(out, place_);
+    if (id_.empty() || v.size() != id_.size()) {
+      out = v;
+      return;
+    }
+    out.resize(v.size());  // one pass: out[k] = v[place of id k]
+    for (std::size_t k = 0; k < v.size(); ++k) out[k] = v[static_cast<std::size_t>(place_[k])];
   }
   template <class T>
   void to_places(std::vector<T>& v) const {

@@ -12,7 +12,8 @@ void NeighbourList::configure(double width, double height, double dmax, double s
   depth_ = depth;
   // Cells wide enough that every candidate pair is in the same or adjacent cells, and no more
   // cells than about twice the particles, so a sparse scene (one dropped sphere) costs nothing.
-  const double sparse = std::sqrt(width * height / (2.0 * static_cast<double>(std::max<std::size_t>(particles, 1))));
+  const double sparse =
+      std::sqrt(width * height / (2.0 * static_cast<double>(std::max<std::size_t>(particles, 1))));
   grid_.configure(width, height, std::max(dmax + skin, sparse));
   for (PairSlots& s : set_) {
     s = PairSlots{};
@@ -102,8 +103,8 @@ void NeighbourList::export_history(PairContacts& out) const {
 // reach follows no pattern a branch predictor could learn. Writes out's arrays from 0 and
 // first_begin[a] relative to them.
 template <bool Depth>
-void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin,
-                               std::size_t end, Found& out, std::vector<std::int32_t>& first_begin) {
+void NeighbourList::find_pairs(const Particles& p, bool carry, std::size_t begin, std::size_t end,
+                               Found& out, std::vector<std::int32_t>& first_begin) {
   const PairSlots& old = set_[cur_];
   const double* x = p.x.data();
   const double* y = p.y.data();
@@ -227,8 +228,8 @@ void NeighbourList::build(const Particles& p, int t, int T, std::size_t begin, s
   std::copy(p.x.begin() + begin, p.x.begin() + end, x_ref_.begin() + begin);
   std::copy(p.y.begin() + begin, p.y.begin() + end, y_ref_.begin() + begin);
   if (depth_) std::copy(p.z.begin() + begin, p.z.begin() + end, z_ref_.begin() + begin);
-  // The whole list in place before any thread reads another's part (a thread's last start,
-  // first_begin[end], is the next thread's first, shifted by it above).
+    // The whole list in place before any thread reads another's part (a thread's last start,
+    // first_begin[end], is the next thread's first, shifted by it above).
 #pragma omp barrier
   if (seeded) {  // a saved history, merged once the whole list is in place
 #pragma omp single

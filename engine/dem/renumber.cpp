@@ -19,8 +19,8 @@
 #include <utility>
 
 #include "core/errors.hpp"
-#include "core/permute.hpp"
 #include "core/hash.hpp"
+#include "core/permute.hpp"
 #include "dem/dem_solver.hpp"
 
 namespace fluidbed {
@@ -150,9 +150,8 @@ void DemSolver::set_state(DemState s) {
     throw InputError("state was saved with " + std::to_string(s.walls.walls) +
                      " walls but the scene has " + std::to_string(walls_.size()));
   if (s.particles.has_depth() != depth_)
-    throw InputError(std::string("state was saved for a ") +
-                     (depth_ ? "monolayer" : "thick slab") + " but the scene is a " +
-                     (depth_ ? "thick slab" : "monolayer"));
+    throw InputError(std::string("state was saved for a ") + (depth_ ? "monolayer" : "thick slab") +
+                     " but the scene is a " + (depth_ ? "thick slab" : "monolayer"));
   const std::size_t n = s.particles.size();
   if (!s.order.empty()) {
     std::vector<std::uint8_t> seen(n, 0);

@@ -18,8 +18,8 @@ void check_gas_step(const Simulation& sim, const RunOptions& o) {
   if (!(cfl <= o.cfl_limit)) {
     std::ostringstream os;
     os.precision(4);
-    os << "gas CFL number " << cfl << " above the limit " << o.cfl_limit << " at t = "
-       << sim.time() << " s: the gas step (time.dt x coupling.particle_steps_per_gas_step) is "
+    os << "gas CFL number " << cfl << " above the limit " << o.cfl_limit << " at t = " << sim.time()
+       << " s: the gas step (time.dt x coupling.particle_steps_per_gas_step) is "
        << "too long for the gas velocity";
     throw SimulationFailure(os.str());
   }
@@ -43,8 +43,8 @@ void check_start(const Simulation& sim) {
   for (std::size_t i = 0; i < p.size(); ++i)
     if (!std::isfinite(p.x[i] + p.y[i] + p.vx[i] + p.vy[i] + p.w[i])) {
       std::ostringstream os;
-      os << "particle " << sim.dem().id_of(i) << " starts with a non-finite position or velocity (NaN) at t = "
-         << sim.time() << " s";
+      os << "particle " << sim.dem().id_of(i)
+         << " starts with a non-finite position or velocity (NaN) at t = " << sim.time() << " s";
       throw SimulationFailure(os.str());
     }
 }
@@ -72,7 +72,8 @@ RunResult run_simulation(Simulation& sim, const RunOptions& options) {
     sim.step();
     if (recorder.after_step(sim)) check_gas_step(sim, options);
     if (options.on_row)
-      for (; rows_handed < recorder.rows().size(); ++rows_handed) options.on_row(recorder.rows()[rows_handed]);
+      for (; rows_handed < recorder.rows().size(); ++rows_handed)
+        options.on_row(recorder.rows()[rows_handed]);
     if (options.on_step) options.on_step(sim);
     if (options.stop && options.stop()) {
       result.completed = false;

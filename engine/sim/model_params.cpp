@@ -25,12 +25,12 @@ DemParams dem_params_for(const Settings& s) {
   d.width = s.domain.width;
   d.height = s.domain.height;
   d.thickness = s.domain.thickness;
-  d.walls = slab_walls(s.domain, slab_has_depth(s.domain, s.particles.diameter));
+  const bool depth = slab_has_depth(s.domain, s.particles.diameter);
+  d.walls = slab_walls(s.domain, depth);
   d.skin = s.contact.skin;
   const double bytes = static_cast<double>(s.particles.count) *
-                       static_cast<double>(Particles::bytes_per_particle(
-                           slab_has_depth(s.domain, s.particles.diameter)));
-  d.renumber_steps = s.contact.renumber_steps >= 0    ? s.contact.renumber_steps
+                       static_cast<double>(Particles::bytes_per_particle(depth));
+  d.renumber_steps = s.contact.renumber_steps >= 0 ? s.contact.renumber_steps
                      : bytes >= kAutoRenumberBytes ? kAutoRenumberSteps
                                                    : 0;
   d.overlap_limit = s.diagnostics.overlap_limit;
