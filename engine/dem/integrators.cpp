@@ -1,5 +1,7 @@
 #include "dem/integrators.hpp"
 
+#include <vector>
+
 #include "core/simd.hpp"
 
 namespace fluidbed {
@@ -9,47 +11,58 @@ namespace {
 // The depth arrays of a thick slab (Particles::has_depth) go through the same formulas as x and
 // w, component by component, in a loop of their own so that the monolayer's loops stay as they
 // were: z from vz and az, the spin about x and y from their rates.
+
+// vz, wx and wy advanced by k times their rates (a kick of the thick slab's own components).
+__attribute__((always_inline)) inline void kick_depth(Particles& P, std::size_t b, std::size_t e,
+                                                      double k) {
+  double *vz = P.vz.data(), *wx = P.wx.data(), *wy = P.wy.data();
+  const double *az = P.az.data(), *awx = P.awx.data(), *awy = P.awy.data();
+#pragma omp simd
+  for (std::size_t i = b; i < e; ++i) {
+    vz[i] += k * az[i];
+    wx[i] += k * awx[i];
+    wy[i] += k * awy[i];
+  }
+}
+
+// z advanced by k times the array v (vz or az).
+__attribute__((always_inline)) inline void drift_depth(Particles& P, std::size_t b, std::size_t e,
+                                                       double k, const std::vector<double>& v) {
+  double* z = P.z.data();
+  const double* dz = v.data();
+#pragma omp simd
+  for (std::size_t i = b; i < e; ++i) z[i] += k * dz[i];
+}
+
 __attribute__((always_inline)) inline void predict_depth(Integrator integrator, double h,
                                                          Particles& P, std::size_t b,
                                                          std::size_t e) {
-  double *z = P.z.data(), *vz = P.vz.data(), *az = P.az.data();
-  double *wx = P.wx.data(), *wy = P.wy.data();
-  const double *awx = P.awx.data(), *awy = P.awy.data();
   switch (integrator) {
     case Integrator::Newmark: {
+      double *z = P.z.data(), *vz = P.vz.data();
+      const double* az = P.az.data();
       const double hh4 = 0.25 * h * h;
 #pragma omp simd
-      for (std::size_t i = b; i < e; ++i) {
-        z[i] += h * vz[i] + hh4 * az[i];
-        vz[i] += 0.5 * h * az[i];
-        wx[i] += 0.5 * h * awx[i];
-        wy[i] += 0.5 * h * awy[i];
-      }
+      for (std::size_t i = b; i < e; ++i) z[i] += h * vz[i] + hh4 * az[i];
+      kick_depth(P, b, e, 0.5 * h);
       break;
     }
     case Integrator::VelocityVerlet:
-#pragma omp simd
-      for (std::size_t i = b; i < e; ++i) {
-        vz[i] += 0.5 * h * az[i];
-        wx[i] += 0.5 * h * awx[i];
-        wy[i] += 0.5 * h * awy[i];
-        z[i] += h * vz[i];
-      }
+      kick_depth(P, b, e, 0.5 * h);
+      drift_depth(P, b, e, h, P.vz);
       break;
     case Integrator::SymplecticEuler:
       break;
   }
 }
 
+// The new accelerations, then the integrator's kick and drift, each a loop with no branch.
 __attribute__((always_inline)) inline void correct_depth(Integrator integrator, double h,
                                                          Particles& P, std::size_t b,
                                                          std::size_t e) {
-  double *z = P.z.data(), *vz = P.vz.data(), *az = P.az.data();
-  double *wx = P.wx.data(), *wy = P.wy.data(), *awx = P.awx.data(), *awy = P.awy.data();
+  double *az = P.az.data(), *awx = P.awx.data(), *awy = P.awy.data();
   const double *fz = P.fz.data(), *tx = P.torque_x.data(), *ty = P.torque_y.data();
   const double *im = P.inv_mass.data(), *ii = P.inv_inertia.data();
-  const double hh4 = 0.25 * h * h;
-  // The new accelerations, then one loop per integrator (no branch inside a loop).
 #pragma omp simd
   for (std::size_t i = b; i < e; ++i) {
     az[i] = fz[i] * im[i];
@@ -58,30 +71,15 @@ __attribute__((always_inline)) inline void correct_depth(Integrator integrator, 
   }
   switch (integrator) {
     case Integrator::Newmark:
-#pragma omp simd
-      for (std::size_t i = b; i < e; ++i) {
-        vz[i] += 0.5 * h * az[i];
-        wx[i] += 0.5 * h * awx[i];
-        wy[i] += 0.5 * h * awy[i];
-        z[i] += hh4 * az[i];
-      }
+      kick_depth(P, b, e, 0.5 * h);
+      drift_depth(P, b, e, 0.25 * h * h, P.az);
       break;
     case Integrator::VelocityVerlet:
-#pragma omp simd
-      for (std::size_t i = b; i < e; ++i) {
-        vz[i] += 0.5 * h * az[i];
-        wx[i] += 0.5 * h * awx[i];
-        wy[i] += 0.5 * h * awy[i];
-      }
+      kick_depth(P, b, e, 0.5 * h);
       break;
     case Integrator::SymplecticEuler:
-#pragma omp simd
-      for (std::size_t i = b; i < e; ++i) {
-        vz[i] += h * az[i];
-        wx[i] += h * awx[i];
-        wy[i] += h * awy[i];
-        z[i] += h * vz[i];
-      }
+      kick_depth(P, b, e, h);
+      drift_depth(P, b, e, h, P.vz);
       break;
   }
 }
