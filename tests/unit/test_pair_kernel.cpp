@@ -604,7 +604,8 @@ DepthContact scalar_wall_contact(const WallContacts& s, std::size_t q, const Con
 }  // namespace
 
 // The walls' kernel against the scalar law to the bit, every wall, both displacement forms,
-// with and without rolling resistance, linear and Hertz-Mindlin laws, every build.
+// with and without rolling resistance, linear and Hertz-Mindlin laws (each of the eight forms of
+// its loop), every build.
 TEST(PairKernel, EveryBuildGivesTheScalarWallContactLawToTheBit) {
   const WallContacts s = random_wall_contacts(4099, 9);
   const std::vector<ContactParams> laws = [] {
@@ -614,9 +615,14 @@ TEST(PairKernel, EveryBuildGivesTheScalarWallContactLawToTheBit) {
         {50000.0, 0.0, 0.15, 0.15, 0.3, 0.1},          // no tangential spring
         {50000.0, 50000.0, 0.15, 0.15, 0.0, 0.0},      // frictionless
     };
+    // Hertz-Mindlin: van Wachem's material as Lethe gives it, with rolling resistance; stiff
+    // glass without.
     ContactParams h{0.0, 0.0, 0.0, 0.0, 0.3, 0.025};
     fluidbed::set_hertz(h, 1.0e7, 0.3, 0.9);
     l.push_back(h);
+    ContactParams glass{0.0, 0.0, 0.0, 0.0, 0.45, 0.0};
+    fluidbed::set_hertz(glass, 6.3e10, 0.23, 0.5);
+    l.push_back(glass);
     return l;
   }();
   const auto count = static_cast<std::int64_t>(s.on.size());
