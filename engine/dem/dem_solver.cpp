@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include "core/errors.hpp"
@@ -43,6 +44,8 @@ DemSolver::DemSolver(const DemParams& d, Particles particles)
     wall_nz_.push_back(w.nz);
     wall_offset_.push_back(w.offset);
   }
+  if (depth_walls_.size() > kDepthWalls)
+    throw std::logic_error("DemSolver: more than a front and a back wall");
   const std::size_t n = particles.size();
   threads_ = resolve_threads(d.threads);
   // A fork costs a microsecond or two: worth it only when a step has real work.

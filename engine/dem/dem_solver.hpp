@@ -259,6 +259,8 @@ class DemSolver {
   // A thick slab's wall contacts, per thread, listed and computed kWallChunk at a time
   // (particle_pass_depth), and the walls as the kernel reads them.
   static constexpr std::int64_t kWallChunk = 256;
+  // The front and back walls' scan (particle_pass_depth): spheres at a time, walls at most.
+  static constexpr std::size_t kWallScan = 256, kDepthWalls = 2;
   struct WallChunk {
     std::vector<std::int32_t> on, particle;
     ContactScratch out;

@@ -5,6 +5,7 @@
 // the walls run the law several contacts at a time (dem/pair_kernel.hpp: depth_contacts,
 // wall_contacts_depth).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/threads.hpp"
@@ -74,6 +75,46 @@ void DemSolver::pair_pass_depth(int t, std::size_t e, double dtau, bool incremen
   acc.max_ratio = std::max(acc.max_ratio, max_ratio);
   acc.worst = worst;
 }
+
+namespace {
+
+// What particle_pass_depth's listing of sphere-wall contacts reads and writes, as plain pointers:
+// the history's flags are bytes, and through a member or a reference every other pointer would
+// be loaded again after each of their stores.
+struct WallLister {
+  const double *x, *y, *z, *r;
+  const double *nx, *ny, *nz, *offset;  // the walls'
+  std::uint8_t* active;                 // the walls' history, [i * walls + c]
+  double *dn, *ds, *ds_y, *ds_z;
+  std::int32_t *on, *particle;  // the chunk: the history's slot (~slot when fresh), the sphere
+  std::size_t walls;
+};
+
+// The contact of sphere i with a wall at the history's slot s, branch-free: written at `listed`,
+// which moves on when they touch (the slot as ~slot the first time); apart, a contact that has
+// just ended leaves no history. Returns the new count of listed contacts.
+inline std::int64_t list_entry(const WallLister& L, std::size_t s, std::size_t i, int touching,
+                               int was, std::int64_t listed) {
+  if (was & (touching ^ 1)) L.dn[s] = L.ds[s] = L.ds_y[s] = L.ds_z[s] = 0.0;
+  L.active[s] = static_cast<std::uint8_t>(touching);
+  L.on[listed] = static_cast<std::int32_t>(s) ^ -(touching & (was ^ 1));
+  L.particle[listed] = static_cast<std::int32_t>(i);
+  return listed + touching;
+}
+
+// Sphere i against walls cs[0, count), in that order.
+inline std::int64_t list_wall(const WallLister& L, std::size_t i, const int* cs, std::int64_t count,
+                              std::int64_t listed) {
+  for (std::int64_t k = 0; k < count; ++k) {
+    const int c = cs[k];
+    const std::size_t s = i * L.walls + static_cast<std::size_t>(c);
+    const double d = L.nx[c] * L.x[i] + L.ny[c] * L.y[i] + L.nz[c] * L.z[i] - L.offset[c];
+    listed = list_entry(L, s, i, d < L.r[i], L.active[s], listed);
+  }
+  return listed;
+}
+
+}  // namespace
 
 bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double dtau,
                                     bool incremental, StepPartial& acc) {
@@ -201,25 +242,80 @@ bool DemSolver::particle_pass_depth(int t, std::size_t b, std::size_t e, double 
     wall_contacts += static_cast<int>(listed);
     listed = 0;
   };
-  // Sphere i against wall c: listed when they touch (~s the first time); apart, a contact that
-  // has just ended leaves no history.
-  auto list_wall = [&](std::size_t i, int c) {
-    const Wall& wall = walls_[static_cast<std::size_t>(c)];
-    const std::size_t s = i * static_cast<std::size_t>(nw) + static_cast<std::size_t>(c);
-    const double d = wall.nx * x[i] + wall.ny * y[i] + wall.nz * z[i] - wall.offset;
-    const int touching = d < r[i], was = wh.active[s];
-    if (was & (touching ^ 1)) wh.dn[s] = wh.ds[s] = wh.ds_y[s] = wh.ds_z[s] = 0.0;
-    wh.active[s] = static_cast<std::uint8_t>(touching);
-    chunk.on[static_cast<std::size_t>(listed)] =
-        static_cast<std::int32_t>(s) ^ -(touching & (was ^ 1));
-    chunk.particle[static_cast<std::size_t>(listed)] = static_cast<std::int32_t>(i);
-    listed += touching;
-    if (listed == kWallChunk) add_chunk();
+  // Sphere i against each wall of `which`, in that order, then sphere i + 1; a chunk is passed
+  // to the kernel when it may not hold another sphere's contacts (where a chunk ends changes no
+  // result: each contact's law is on its own, and they are added in the listed order).
+  const WallLister lister{x,
+                          y,
+                          z,
+                          r,
+                          wall_nx_.data(),
+                          wall_ny_.data(),
+                          wall_nz_.data(),
+                          wall_offset_.data(),
+                          wh.active.data(),
+                          wh.dn.data(),
+                          wh.ds.data(),
+                          wh.ds_y.data(),
+                          wh.ds_z.data(),
+                          chunk.on.data(),
+                          chunk.particle.data(),
+                          static_cast<std::size_t>(nw)};
+  auto list_walls = [&](auto next, std::size_t count, const std::vector<int>& which) {
+    const WallLister L = lister;  // a local copy: no store of the listing can reach it
+    const int* ws = which.data();
+    const auto per = static_cast<std::int64_t>(which.size());
+    for (std::size_t q = 0; q < count;) {
+      std::int64_t n = listed;
+      for (; q < count && n + per <= kWallChunk; ++q) n = list_wall(L, next(q), ws, per, n);
+      listed = n;
+      if (n + per > kWallChunk) add_chunk();
+    }
   };
-  for (const std::int32_t ni : near_wall_[static_cast<std::size_t>(t)])
-    for (const int c : planar_walls_) list_wall(static_cast<std::size_t>(ni), c);
-  for (std::size_t i = b; i < e; ++i)
-    for (const int c : depth_walls_) list_wall(i, c);
+  const std::vector<std::int32_t>& near = near_wall_[static_cast<std::size_t>(t)];
+  list_walls([ids = near.data()](std::size_t q) { return static_cast<std::size_t>(ids[q]); },
+             near.size(), planar_walls_);
+  // The front and back walls for every sphere, kWallScan spheres at a time: first, for each
+  // wall, whether each sphere touches it (a loop of arithmetic alone), then the contacts that
+  // touch or touched at the last step picked out in sphere order (branch-free), then those listed
+  // as list_wall lists them (the others would change nothing). Measured on the slab bench: the
+  // contacts 1.4 x faster than with list_wall over every sphere, whose stores to the history's
+  // byte flags kept the loop from running ahead.
+  const WallLister L = lister;
+  const std::size_t nd = depth_walls_.size();  // 2 (dem/walls.hpp), at most kDepthWalls
+  std::array<std::array<std::uint8_t, kWallScan>, kDepthWalls> flag{};
+  std::array<std::uint16_t, kWallScan * kDepthWalls> pick{};
+  std::array<std::size_t, kDepthWalls> depth_c{};
+  for (std::size_t w = 0; w < nd; ++w) depth_c[w] = static_cast<std::size_t>(depth_walls_[w]);
+  for (std::size_t i0 = b; i0 < e; i0 += kWallScan) {
+    const std::size_t n = std::min(kWallScan, e - i0);
+    for (std::size_t w = 0; w < nd; ++w) {
+      const std::size_t c = depth_c[w];
+      const double cx = L.nx[c], cy = L.ny[c], cz = L.nz[c], off = L.offset[c];
+      std::uint8_t* f = flag[w].data();
+      const double *xs = x + i0, *ys = y + i0, *zs = z + i0, *rs = r + i0;
+#pragma omp simd
+      for (std::size_t k = 0; k < n; ++k) {
+        const double d = cx * xs[k] + cy * ys[k] + cz * zs[k] - off;
+        f[k] = d < rs[k] ? 1 : 0;
+      }
+    }
+    std::size_t picked = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      for (std::size_t w = 0; w < nd; ++w) {
+        const std::uint8_t was = L.active[(i0 + k) * L.walls + depth_c[w]];
+        flag[w][k] = static_cast<std::uint8_t>(flag[w][k] | (was << 1));
+        pick[picked] = static_cast<std::uint16_t>(k * kDepthWalls + w);
+        picked += flag[w][k] != 0 ? 1 : 0;
+      }
+    for (std::size_t q = 0; q < picked; ++q) {
+      const std::size_t k = pick[q] / kDepthWalls, w = pick[q] % kDepthWalls;
+      const std::size_t i = i0 + k;
+      const std::size_t s = i * L.walls + depth_c[w];
+      listed = list_entry(L, s, i, flag[w][k] & 1, flag[w][k] >> 1, listed);
+      if (listed == kWallChunk) add_chunk();
+    }
+  }
   add_chunk();
   return finish_particle_pass(b, e, wall_contacts, sliding, max_wall_ratio, acc);
 }
