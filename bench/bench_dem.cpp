@@ -1,5 +1,6 @@
 // Kernels of the particle step: the contact law, a neighbour-grid rebuild, one full step of the
-// packed bed, and the step of a wide bed by the particles' numbering.
+// packed bed, the step of a wide bed by the particles' numbering, and a monolayer's step
+// against a thick slab's.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -94,6 +95,25 @@ BENCHMARK(BM_ParticleNumbering)
     ->ArgsProduct({{24000, 240000}, {0, 1, 2}})
     ->Iterations(100)
     ->Unit(benchmark::kMillisecond);
+
+// The particle step (no gas, one thread) of the packing's 2,400 spheres from the lattice start
+// (the slab bench's work, `fluidbed bench --peer liggghts`) after 0.15 s of fall, in contact:
+// 0 a monolayer, 1 a thick slab three diameters deep (domain.thickness = 0.012: the front and
+// back walls, the 3D law, six degrees of freedom). Time per particle-step (s_per_unit).
+void BM_ParticleStepDepth(benchmark::State& state) {
+  const bool slab = state.range(0) == 1;
+  Settings s;
+  if (slab) s.domain.thickness = 0.012;
+  DemParams d = dem_params_for(s);
+  d.threads = 1;
+  DemSolver dem(d, place_particles(s));
+  const auto fall = static_cast<int>(0.15 / d.dt);
+  for (int k = 0; k < fall; ++k) dem.step();
+  for (auto _ : state) dem.step();
+  time_per_unit(state, static_cast<double>(dem.particles().size()),
+                slab ? "per particle-step, a thick slab (0.012 m)" : "per particle-step, a monolayer");
+}
+BENCHMARK(BM_ParticleStepDepth)->Arg(0)->Arg(1)->Iterations(5000)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fluidbed
