@@ -110,8 +110,9 @@ void BM_ParticleStepDepth(benchmark::State& state) {
   const auto fall = static_cast<int>(0.15 / d.dt);
   for (int k = 0; k < fall; ++k) dem.step();
   for (auto _ : state) dem.step();
-  time_per_unit(state, static_cast<double>(dem.particles().size()),
-                slab ? "per particle-step, a thick slab (0.012 m)" : "per particle-step, a monolayer");
+  time_per_unit(
+      state, static_cast<double>(dem.particles().size()),
+      slab ? "per particle-step, a thick slab (0.012 m)" : "per particle-step, a monolayer");
 }
 BENCHMARK(BM_ParticleStepDepth)->Arg(0)->Arg(1)->Iterations(5000)->Unit(benchmark::kMicrosecond);
 

@@ -281,9 +281,8 @@ class DemSolver {
   // block), summed in block order: the same bits for any thread count.
   std::vector<EnergyLedger> block_ledger_;
   EnergyLedger ledger_;
-  bool outside_ = false;
-  std::vector<std::size_t> split_;  // thread t's particles: [split_[t], split_[t + 1]) // a
-                                    // particle left the box in the last step
+  bool outside_ = false;            // a particle left the box in the last step
+  std::vector<std::size_t> split_;  // thread t's particles: [split_[t], split_[t + 1])
   int worst_pair_i_ = -1, worst_pair_j_ = -1;
   int renumber_steps_ = 0;
   double cell_ = 0.0;  // m, the cells of renumber's sort
