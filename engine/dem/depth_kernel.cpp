@@ -226,32 +226,30 @@ struct WallLoops {
   }
 };
 
-// The eight forms of a kernel's loops, the choice outside the loops.
-template <class Loops, class In>
-__attribute__((always_inline)) inline void eight_forms(const In& in, const DepthContactOut& out) {
+// The four forms of a kernel's loops for one law (Hertz or linear), the choice outside the loops.
+template <class Loops, bool Hertz, class In>
+__attribute__((always_inline)) inline void four_forms(const In& in, const DepthContactOut& out) {
   const bool rolling = in.params.mu_r > 0.0;
-  if (in.params.hertz) {
-    if (in.incremental) {
-      if (rolling) {
-        Loops::template run<true, true, true>(in, out);
-      } else {
-        Loops::template run<true, false, true>(in, out);
-      }
-    } else if (rolling) {
-      Loops::template run<false, true, true>(in, out);
-    } else {
-      Loops::template run<false, false, true>(in, out);
-    }
-  } else if (in.incremental) {
+  if (in.incremental) {
     if (rolling) {
-      Loops::template run<true, true, false>(in, out);
+      Loops::template run<true, true, Hertz>(in, out);
     } else {
-      Loops::template run<true, false, false>(in, out);
+      Loops::template run<true, false, Hertz>(in, out);
     }
   } else if (rolling) {
-    Loops::template run<false, true, false>(in, out);
+    Loops::template run<false, true, Hertz>(in, out);
   } else {
-    Loops::template run<false, false, false>(in, out);
+    Loops::template run<false, false, Hertz>(in, out);
+  }
+}
+
+// The eight forms: the law's four each.
+template <class Loops, class In>
+__attribute__((always_inline)) inline void eight_forms(const In& in, const DepthContactOut& out) {
+  if (in.params.hertz) {
+    four_forms<Loops, true>(in, out);
+  } else {
+    four_forms<Loops, false>(in, out);
   }
 }
 __attribute__((always_inline)) inline void depth_either(const DepthContactIn& in,
