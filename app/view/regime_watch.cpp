@@ -91,14 +91,8 @@ bool RegimeWatch::after_step(const Simulation& sim) {
 
 void RegimeWatch::analyse(const Simulation& sim) {
   const double t = sim.time();
-  double reference = -1.0;  // a timed restart keeps the bed's starting surface
-  if (analysis_ && t - started_ > kRestartAfter) {
-    reference = analysis_->history().reference_surface;
-    analysis_.reset();
-  }
   if (!analysis_) {
     analysis_ = std::make_unique<BubbleAnalysis>(settings_, geometry_);
-    analysis_->set_reference_surface(reference);
     started_ = t;
   }
   const BubbleFrame& f = analysis_->analyse(t, sim.dem().particles());
@@ -106,6 +100,9 @@ void RegimeWatch::analyse(const Simulation& sim) {
   v->t = t;
   const double from = std::max(started_, t - kWindow);
   v->window = analysis_->history().summarize(from, t, settings_, geometry_.gravity);
+  // Later windows start at `from` or after: what is older goes (memory flat however long the
+  // class runs; the frames before it are read again by no summary).
+  analysis_->forget_before(from);
   v->window_s = t - from;
   v->shown = label_.update(t, v->window.regime);
   v->gravity = geometry_.gravity;

@@ -76,9 +76,6 @@ std::string mean_rise_words(const BubbleStatistics& w);
 class RegimeWatch {
  public:
   static constexpr double kWindow = 1.0;  // s: the regime of the last second, as run's timeseries
-  // The analysis keeps a record per frame and per bubble; after this much simulated time it
-  // starts again (a few tens of MB at most; the regime is unsure for a second then).
-  static constexpr double kRestartAfter = 600.0;  // s
 
   // Analyses the starting state `sim` is in.
   RegimeWatch(const Settings& scene, const Simulation& sim);

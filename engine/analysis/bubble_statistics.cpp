@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <ostream>
 #include <string>
@@ -75,6 +76,20 @@ void BubbleHistory::add(const BubbleFrame& frame, double dt) {
   }
   for (const Bubble& b : frame.ended) sample(b, true);
   frames.push_back(f);
+}
+
+void BubbleHistory::forget_before(double t) {
+  // The last frame at or before t stays: summarize() starts the samples after the first frame.
+  const auto after = std::upper_bound(frames.begin(), frames.end(), t,
+                                      [](double u, const Frame& f) { return u < f.t; });
+  if (after != frames.begin()) {
+    const auto keep_from = std::prev(after);
+    if (keep_from - frames.begin() >= frames.end() - keep_from)
+      frames.erase(frames.begin(), keep_from);
+  }
+  const auto later = std::upper_bound(samples.begin(), samples.end(), t,
+                                      [](double u, const Sample& q) { return u < q.t; });
+  if (later - samples.begin() >= samples.end() - later) samples.erase(samples.begin(), later);
 }
 
 BubbleStatistics BubbleHistory::summarize(double t_from, double t_to, const BubbleSettings& s,

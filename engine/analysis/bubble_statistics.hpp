@@ -117,6 +117,12 @@ struct BubbleHistory {
   // rise-velocity reference (m/s^2).
   BubbleStatistics summarize(double t_from, double t_to, const BubbleSettings& s,
                              double gravity) const;
+  // Lets go of the records no summary with t_from >= t reads: the frames before the last one at
+  // or before t, and the samples at or before t (id_frames and the reference surface stay).
+  // Such summaries come out the same to the bit. The records go in batches, once they are at
+  // least as many as those kept, so that a caller forgetting at every frame copies each record
+  // about once: a trailing window's history stays within twice the window.
+  void forget_before(double t);
 
   // Its state, for a checkpoint (core/binary_io.hpp).
   template <class Archive>

@@ -47,6 +47,10 @@ class BubbleAnalysis {
   // id younger than min_track_frames at the call counts as flicker). Cost: the window's samples
   // (found by bisection), so call it once per frame, not per timeseries row.
   Regime regime(double t_from, double t_to) const;
+  // Lets go of the history no later summary reads (BubbleHistory::forget_before): for a caller
+  // that only ever looks at a trailing window from `t` on (the viewer's regime), whose run may
+  // last hours.
+  void forget_before(double t) { history_.forget_before(t); }
 
   // Its state for a checkpoint (core/binary_io.hpp): the tracker and the history (the void
   // fraction and the frame are rebuilt by the next analyse()). restore expects an analysis built

@@ -2,9 +2,11 @@
 // hexagonal monolayer with circular holes cut out (bubble_test_bed.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -142,6 +144,60 @@ TEST(BubbleStatistics, RegimeRule) {
   EXPECT_EQ(f.formed, 1);
   EXPECT_EQ(f.flicker_ids, 2);
   EXPECT_STREQ(fluidbed::to_string(Regime::spouting), "spouting");
+}
+
+TEST(BubbleStatistics, ForgettingWhatNoLaterWindowReadsKeepsEveryWindowsSummary) {
+  // The viewer's regime: a trailing window of 0.3 s summarised after each of 1,000 frames of
+  // 10 ms, its history forgetting what lies before the window each time, against the whole
+  // history. Samples of every event, some with a velocity, ids of 1 to 5 frames, slugs and
+  // spouts here and there (a seeded generator).
+  const BubbleSettings s;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  BubbleHistory whole, trailing;
+  std::size_t largest = 0;
+  int next_id = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const double t = 0.01 * k;
+    BubbleHistory::Frame f;
+    f.t = t;
+    f.dt = k == 0 ? 0.0 : 0.01;
+    f.slug = unit(rng) < 0.2;
+    f.spout = unit(rng) < 0.1;
+    f.jet_cavity = unit(rng) < 0.5;
+    f.surface = 0.1 + 0.01 * unit(rng);
+    f.median_speed = unit(rng);
+    std::vector<BubbleHistory::Sample> qs(static_cast<std::size_t>(4 * unit(rng)));
+    for (BubbleHistory::Sample& q : qs) {
+      q.t = t;
+      q.id = next_id++;
+      q.d_eq = 0.01 + 0.02 * unit(rng);
+      q.vx = unit(rng) - 0.5;
+      q.vy = unit(rng);
+      q.has_velocity = unit(rng) < 0.7;
+      q.from_jet = unit(rng) < 0.3;
+      q.event = static_cast<BubbleEvent>(static_cast<int>(6 * unit(rng)) % 6);
+      q.merged_id = q.event == BubbleEvent::coalesced ? q.id / 2 : -1;
+      q.ended = q.event == BubbleEvent::erupted || q.event == BubbleEvent::vanished;
+      whole.id_frames.push_back(1 + static_cast<int>(5 * unit(rng)) % 5);
+    }
+    for (BubbleHistory* h : {&whole, &trailing}) {
+      h->frames.push_back(f);
+      h->samples.insert(h->samples.end(), qs.begin(), qs.end());
+      h->reference_surface = 0.1;
+    }
+    trailing.id_frames = whole.id_frames;
+    const double from = std::max(0.0, t - 0.3);
+    const std::string a = to_json(whole.summarize(from, t, s, 9.81)).dump();
+    const std::string b = to_json(trailing.summarize(from, t, s, 9.81)).dump();
+    ASSERT_EQ(a, b) << "at t = " << t;
+    trailing.forget_before(from);
+    largest = std::max(largest, trailing.frames.size());
+  }
+  EXPECT_EQ(whole.frames.size(), 1000u);
+  // Within twice the window's 31 frames, and one frame before it.
+  EXPECT_LE(largest, 63u);
+  EXPECT_LT(trailing.samples.size(), whole.samples.size() / 10);
 }
 
 TEST(BubbleStatistics, FlickerEruptionAndBursts) {
