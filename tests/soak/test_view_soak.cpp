@@ -120,9 +120,9 @@ TEST(ViewSoak, RandomCommandsNeitherFailNorGrow) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const auto t0 = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-  // A checkpoint every "minute": a tenth of the run, at least 30 s (a shortened soak's process
-  // grows to its working size over its first half minute) and at most 60 s. The first is the
-  // reference.
+  // A checkpoint every "minute" and at the end: a tenth of the run, at least 30 s (a shortened
+  // soak's process grows to its working size over its first half minute) and at most 60 s. The
+  // first is the reference.
   const double minute = std::min(60.0, std::max(30.0, seconds / 10.0));
   std::vector<double> heap_at, resident_at;           // at the checkpoints
   double first_resident = 0.0, later_resident = 0.0;  // peaks over the readings once a second
@@ -136,25 +136,29 @@ TEST(ViewSoak, RandomCommandsNeitherFailNorGrow) {
     if (!st.error.empty()) failure = "engine failure: " + st.error;
     if (!st.refusal.empty()) failure = "refused command: " + st.refusal;
   };
+  // Brings the bed to the same state each time (the packed bed at the start, paused, at 1.5 U_mf,
+  // the ideal case and the outlines off; the viewer thread goes on reading the last snapshot)
+  // and reads the memory.
+  const auto checkpoint = [&] {
+    for (const ViewCommand& c : {ViewCommand{K::ideal, 0.0}, ViewCommand{K::bubbles, 0.0},
+                                 ViewCommand{K::velocity, 1.5 * 1.8}, ViewCommand{K::reset, 0.0},
+                                 ViewCommand{K::pause, 0.0}})
+      posted = engine.post(c);
+    commands += 5;
+    ++resets;
+    if (!engine.wait_until_stopped(std::chrono::seconds(60)))
+      failure = "the engine did not stop at a checkpoint";
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    check_status();
+    heap_at.push_back(heap_in_use());
+    resident_at.push_back(resident_bytes());
+    std::printf("soak: t = %5.0f s  checkpoint %zu: heap in use %.2f MB, resident %.1f MB\n",
+                elapsed(), heap_at.size(), heap_at.back() / 1e6, resident_at.back() / 1e6);
+    std::fflush(stdout);
+  };
   while (elapsed() < seconds && failure.empty()) {
     if (elapsed() >= next_checkpoint) {
-      // The same state each time: the packed bed at the start, paused, at 1.5 U_mf, the ideal
-      // case and the outlines off; the viewer thread goes on reading the last snapshot.
-      for (const ViewCommand& c : {ViewCommand{K::ideal, 0.0}, ViewCommand{K::bubbles, 0.0},
-                                   ViewCommand{K::velocity, 1.5 * 1.8}, ViewCommand{K::reset, 0.0},
-                                   ViewCommand{K::pause, 0.0}})
-        posted = engine.post(c);
-      commands += 5;
-      ++resets;
-      if (!engine.wait_until_stopped(std::chrono::seconds(60)))
-        failure = "the engine did not stop at a checkpoint";
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      check_status();
-      heap_at.push_back(heap_in_use());
-      resident_at.push_back(resident_bytes());
-      std::printf("soak: t = %5.0f s  checkpoint %zu: heap in use %.2f MB, resident %.1f MB\n",
-                  elapsed(), heap_at.size(), heap_at.back() / 1e6, resident_at.back() / 1e6);
-      std::fflush(stdout);
+      checkpoint();
       next_checkpoint += minute;
     }
     const double r = unit(rng);
@@ -192,6 +196,7 @@ TEST(ViewSoak, RandomCommandsNeitherFailNorGrow) {
       peak = std::max(peak, rss);
     }
   }
+  if (failure.empty()) checkpoint();  // and one at the end: a one-minute soak compares two
   stop.store(true);
   viewer.join();
   const app::EngineStatus st = engine.status();
@@ -205,7 +210,7 @@ TEST(ViewSoak, RandomCommandsNeitherFailNorGrow) {
   EXPECT_EQ(bad_frames.load(), 0);
   EXPECT_GT(frames.load(), 0);
   EXPECT_GT(commands, 10);
-  ASSERT_GE(heap_at.size(), 2u) << "a soak of at least two checkpoints";
+  ASSERT_GE(heap_at.size(), 2u) << "a soak of at least " << minute << " s (two checkpoints)";
   // Flat: at every checkpoint the heap within 15 % of the first's. The same state does not hold
   // the very same bytes each time: buffers that are reused keep the capacity of their largest
   // fill (the snapshots' outlines, the gas's and the contacts' arrays), and two 4-minute soaks'
