@@ -162,18 +162,21 @@ void time_gas_steps(benchmark::State& state, GasSolver& gas, const std::vector<d
   std::vector<double> fx(eps.size(), 0.0), fy(eps.size(), 0.0);
   for (std::size_t c = 0; c < eps.size(); ++c) fy[c] = (1.0 - eps[c]) * (2700.0 - 1.205) * 9.81;
   for (int k = 0; k < warmup; ++k) gas.step(dt, eps, fx, fy);
-  std::int64_t iterations = 0, rebuilds = 0;
+  std::int64_t iterations = 0, rebuilds = 0, solves = 0;
   for (auto _ : state) {
     const GasStepReport r = gas.step(dt, eps, fx, fy);
     iterations += r.simple_iterations;
+    solves += r.pressure_iterations_total;
     rebuilds += r.preconditioner_rebuilt ? 1 : 0;
     benchmark::DoNotOptimize(r);
   }
   const double steps = static_cast<double>(state.iterations());
-  char label[96];
+  char label[128];
   std::snprintf(label, sizeof label,
-                "per cell and SIMPLE iteration; %.2f iterations per step, %.1f %% rebuilt",
+                "per cell and SIMPLE iteration; %.2f iterations per step, %.1f PCG iterations "
+                "per iteration, %.1f %% rebuilt",
                 static_cast<double>(iterations) / steps,
+                static_cast<double>(solves) / static_cast<double>(iterations),
                 100.0 * static_cast<double>(rebuilds) / steps);
   time_per_unit(state, static_cast<double>(eps.size()) * static_cast<double>(iterations) / steps,
                 label);
@@ -196,7 +199,9 @@ BENCHMARK(BM_GasStep)->Unit(benchmark::kMicrosecond);
 // refines; {nx, ny}: the paper's 10 x 20 mm cells on a wider bed (nx / 15 jets, one every
 // 0.15 m, as wide.toml), up to the 240,000-sphere bed's 1500 x 45. The porosity is a bed's
 // (0.45 below 0.25 m, 1 above, a row of cells between); 300 steps of start-up, then steps at
-// the paper's CFL number with the preconditioner refreshed as in a run.
+// the paper's CFL number with the preconditioner refreshed as in a run. A third argument names
+// the pressure correction's preconditioner (1 banded, 2 multigrid; 0 or none: the automatic
+// choice), to measure where one overtakes the other.
 void BM_GasStepGrid(benchmark::State& state) {
   GasGrid g;
   g.nx = static_cast<int>(state.range(0));
@@ -209,6 +214,9 @@ void BM_GasStepGrid(benchmark::State& state) {
   }
   GasParams params;  // the paper's air, its jet at U = 2.8 m/s
   params.jets = std::max(1, static_cast<int>(std::lround(g.width / 0.15)));
+  const auto method = state.range(2);
+  if (method != 0)
+    params.pressure_method = method == 1 ? PressureMethod::banded : PressureMethod::multigrid;
   GasSolver gas(g, params);
   std::vector<double> eps(static_cast<std::size_t>(g.cells()));
   for (int j = 0; j < g.ny; ++j) {
@@ -219,8 +227,20 @@ void BM_GasStepGrid(benchmark::State& state) {
   // 1 mm cell under the 42 m/s jet at 1.5e-5 s would pass 1).
   time_gas_steps(state, gas, eps, 1.5e-5 * std::min(1.0, g.dx() / 0.01), 300);
 }
-BENCHMARK(BM_GasStepGrid)->Args({15, 0})->Args({30, 0})->Args({50, 0})->Args({80, 0})
-    ->Args({150, 0})->Args({150, 45})->Args({1500, 45})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_GasStepGrid)
+    ->Args({15, 0, 0})
+    ->Args({30, 0, 0})
+    ->Args({50, 0, 0})
+    ->Args({80, 0, 0})
+    ->Args({150, 0, 0})
+    ->Args({150, 45, 0})
+    ->Args({1500, 45, 0})
+    ->Unit(benchmark::kMicrosecond);
+// Each preconditioner forced, about where they cross and on the wide beds.
+BENCHMARK(BM_GasStepGrid)
+    ->ArgsProduct({{30, 40, 50, 65, 80}, {0}, {1, 2}})
+    ->ArgsProduct({{150, 1500}, {45}, {1, 2}})
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fluidbed

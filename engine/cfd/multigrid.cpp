@@ -33,41 +33,107 @@ void coarsen(const auto& f, auto& c) {
     }
 }
 
-// One Gauss-Seidel sweep of A x = b, forward (cells in increasing order) or backward. A cell's
-// update waits for the neighbour just updated, so that term is taken last and the diagonal is
-// multiplied by its inverse: the chain from one cell to the next is a multiply, a subtraction
-// and a multiply, not a division (measured: BM_PressureSolveMultigrid).
-void sweep(auto& L, bool forward) {
+// Each row's tridiagonal part (its diagonal and east couplings) factored for the Thomas
+// algorithm: mul[c] multiplies the cell before in the elimination, inv[c] is the inverse of the
+// eliminated pivot. Returns false when a pivot is not positive.
+bool factor_rows(auto& L) {
+  const auto m = static_cast<std::size_t>(L.nx) * L.ny;
+  L.row_mul.assign(m, 0.0);
+  L.row_inv.assign(m, 0.0);
+  for (int j = 0; j < L.ny; ++j) {
+    double inv = 0.0;
+    for (int i = 0; i < L.nx; ++i) {
+      const std::size_t c = static_cast<std::size_t>(j) * L.nx + i;
+      const double mul = i > 0 ? L.east[c - 1] * inv : 0.0;
+      const double pivot = L.diag[c] - (i > 0 ? mul * L.east[c - 1] : 0.0);
+      if (!(pivot > 0.0)) return false;
+      L.row_mul[c] = mul;
+      L.row_inv[c] = inv = 1.0 / pivot;
+    }
+  }
+  return true;
+}
+
+// Rows j[0..K) of one colour solved exactly along x (Thomas, the factors from factor_rows) with
+// the rows of the other colour as they stand. The K rows are independent: their recurrences run
+// side by side, so that each waits on its own chain only.
+template <int K>
+void solve_rows(auto& L, const int* rows) {
   const int nx = L.nx, ny = L.ny;
-  const double* inv = L.inv_diag.data();
   const double* e = L.east.data();
   const double* no = L.north.data();
-  double* x = L.x.data();
+  const double* mul = L.row_mul.data();
+  const double* inv = L.row_inv.data();
   const double* b = L.b.data();
-  const auto others = [&](int j, int c) {  // b minus the rows below and above
-    double s = b[c];
-    if (j > 0) s -= no[c - nx] * x[c - nx];
-    if (j + 1 < ny) s -= no[c] * x[c + nx];
-    return s;
-  };
-  if (forward) {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const int c = j * nx + i;
-        double s = others(j, c);
-        if (i + 1 < nx) s -= e[c] * x[c + 1];
-        if (i > 0) s -= e[c - 1] * x[c - 1];
-        x[c] = s * inv[c];
+  double* x = L.x.data();
+  int r[K];
+  bool below[K], above[K];
+  for (int k = 0; k < K; ++k) {
+    r[k] = rows[k] * nx;
+    below[k] = rows[k] > 0;
+    above[k] = rows[k] + 1 < ny;
+  }
+  // Elimination: x holds each row's right-hand side with the rows around it moved over, the
+  // cells before already eliminated.
+  double y[K] = {};
+  for (int i = 0; i < nx; ++i)
+    for (int k = 0; k < K; ++k) {
+      const int c = r[k] + i;
+      double s = b[c];
+      if (below[k]) s -= no[c - nx] * x[c - nx];
+      if (above[k]) s -= no[c] * x[c + nx];
+      y[k] = s - mul[c] * y[k];
+      x[c] = y[k];
+    }
+  // Back substitution.
+  double z[K] = {};
+  for (int i = nx - 1; i >= 0; --i)
+    for (int k = 0; k < K; ++k) {
+      const int c = r[k] + i;
+      z[k] = (x[c] - e[c] * z[k]) * inv[c];
+      x[c] = z[k];
+    }
+}
+
+// One zebra line Gauss-Seidel sweep of A x = b: the even rows of cells solved exactly along x
+// with the odd rows as they stand, then the odd rows with the even ones (forward), or odd rows
+// first (backward). The two orders are each other's transpose, so a cycle with one before and the
+// other after the coarse correction stays symmetric. Rows rather than points because the gas's
+// cells are taller than wide (the paper's 10 x 20 mm): a face's coefficient is its area squared
+// over a volume, so cells side by side couple (dy / dx)^2 = 4 times as strongly as cells one above
+// the other, and a point smoother leaves the error that varies from row to row. Rows of one
+// colour are independent, four solved side by side. Measured (BM_GasStepGrid at 150 x 450, PCG
+// iterations per solve): 6.4 with a point Gauss-Seidel sweep, 4.0 with the rows in order bottom
+// to top, 2.7 with the zebra order, each sweep about as dear as the point one.
+void sweep(auto& L, bool forward) {
+  for (int pass = 0; pass < 2; ++pass) {
+    const int colour = forward ? pass : 1 - pass;
+    int rows[4];
+    int m = 0;
+    const auto flush = [&] {
+      switch (m) {
+        case 4:
+          solve_rows<4>(L, rows);
+          break;
+        case 3:
+          solve_rows<3>(L, rows);
+          break;
+        case 2:
+          solve_rows<2>(L, rows);
+          break;
+        case 1:
+          solve_rows<1>(L, rows);
+          break;
+        default:
+          break;
       }
-  } else {
-    for (int j = ny - 1; j >= 0; --j)
-      for (int i = nx - 1; i >= 0; --i) {
-        const int c = j * nx + i;
-        double s = others(j, c);
-        if (i > 0) s -= e[c - 1] * x[c - 1];
-        if (i + 1 < nx) s -= e[c] * x[c + 1];
-        x[c] = s * inv[c];
-      }
+      m = 0;
+    };
+    for (int j = colour; j < L.ny; j += 2) {
+      rows[m++] = j;
+      if (m == 4) flush();
+    }
+    flush();
   }
 }
 
@@ -110,8 +176,7 @@ bool MultigridPreconditioner::build(int nx, int ny, const double* diag, const do
     L.b.assign(m, 0.0);
     L.r.assign(m, 0.0);
     if (&L == &levels_.back()) break;  // solved exactly, never swept
-    L.inv_diag.resize(m);
-    for (std::size_t k = 0; k < m; ++k) L.inv_diag[k] = 1.0 / L.diag[k];
+    if (!factor_rows(L)) return false;
   }
   const Level& c = levels_.back();
   coarse_ = std::make_unique<BandedLdlt>(c.nx, c.ny);

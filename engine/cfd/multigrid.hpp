@@ -4,12 +4,14 @@
 // application. Coarse cells are 2 x 2 blocks of finer ones (the last row or column of an odd
 // grid alone); the coarse matrix is the Galerkin product of the piecewise-constant prolongation
 // (a coarse face's coupling is the sum of the fine couplings across it), so every level keeps the
-// five-point form and stays symmetric positive definite. Smoothing: one forward Gauss-Seidel
-// sweep on the way down, one backward sweep on the way up, so that the cycle is a symmetric
-// positive definite operator and conjugate gradients may use it. The coarsest level (a few
-// hundred cells) is solved exactly by a banded LDL^T. A piecewise-constant coarse correction is
-// too short by about half on a Poisson-like matrix; it is scaled by kCorrection (measured:
-// bench_pressure.cpp's iteration counts). Serial, in a fixed order: the same bits on every run.
+// five-point form and stays symmetric positive definite. Smoothing: one zebra line Gauss-Seidel
+// sweep (the even rows of cells solved exactly along x, then the odd ones) on the way down and
+// the same in the other order (odd rows, then even) on the way up, so that the cycle is a
+// symmetric positive definite operator and conjugate gradients may use it. The coarsest level (a
+// few hundred cells) is solved exactly by a banded LDL^T. A piecewise-constant coarse correction
+// is too short by about half on a Poisson-like matrix; it is scaled by kCorrection (measured:
+// BM_GasStepGrid's and bench_pressure.cpp's iteration counts). Serial, in a fixed order: the same
+// bits on every run.
 #include <memory>
 #include <vector>
 
@@ -26,7 +28,7 @@ class MultigridPreconditioner {
 
   // The hierarchy for the matrix with diagonal diag[c], east coupling east[c] = A(c, c + 1)
   // (0 in the last column) and north coupling north[c] = A(c, c + nx) (0 in the top row),
-  // c = j nx + i. Returns false when the coarsest level is not positive definite.
+  // c = j nx + i. Returns false when a level is not positive definite.
   bool build(int nx, int ny, const double* diag, const double* east, const double* north);
   // z = M^-1 r: one V-cycle from z = 0. r and z must not overlap.
   void apply(const double* r, double* z);
@@ -36,7 +38,8 @@ class MultigridPreconditioner {
   struct Level {
     int nx = 0, ny = 0;
     std::vector<double> diag, east, north;
-    std::vector<double> inv_diag;  // 1 / diag (empty on the coarsest level, never swept)
+    // Each row's Thomas factors (cfd/multigrid.cpp; empty on the coarsest level, never swept).
+    std::vector<double> row_mul, row_inv;
     std::vector<double> x, b, r;  // this level's unknowns, right-hand side and residual
   };
   std::vector<Level> levels_;

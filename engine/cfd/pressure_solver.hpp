@@ -24,16 +24,18 @@ struct PressureSolveReport {
 // per cell grows with the band's width, the grid's short side) or a multigrid V-cycle
 // (cfd/multigrid.hpp; more PCG iterations, a cost per cell that grows slowly). `automatic`
 // takes multigrid where the short side passes kMultigridBand cells. Measured with
-// bench_pressure.cpp (a solve to 1e-3 with the factorization kept, ns per cell, banded against
-// multigrid): 65 x 195, 119 against 225; 80 x 240, 309 against 232; 150 x 450, 805 against 322;
-// but a wide grid of 45 rows keeps a narrow band: 1500 x 45 (the 240,000-sphere bed), 205
-// against 374. Every shipped scene's grid is banded (the paper's 15 x 45, van Wachem's finest 36
-// x 200). The others are for tests and benchmarks.
+// BM_GasStepGrid (the gas step of a bed on the paper's 10 x 20 mm cells and finer ones of the
+// same shape, each preconditioner forced, ns per cell and SIMPLE iteration, medians of 5, banded
+// against multigrid): 40 x 120, 77 against 65; 50 x 150, 69 against 73; 65 x 195, 118 against
+// 72; and on wide grids of 45 rows, whose band stays narrow: 150 x 45, 65 against 89; 1500 x 45
+// (the 240,000-sphere bed), 93 against 84 (kept banded: within this machine's noise). Every
+// shipped scene's grid is banded (the paper's 15 x 45, van Wachem's finest 36 x 200). The others
+// are for tests and benchmarks.
 enum class PressureMethod { automatic, banded, multigrid };
 
 class PressureSolver {
  public:
-  static constexpr int kMultigridBand = 72;
+  static constexpr int kMultigridBand = 56;
   PressureSolver(int nx, int ny, PressureMethod method = PressureMethod::automatic);
   bool multigrid() const { return multigrid_; }
 
