@@ -40,7 +40,8 @@ class MultigridPreconditioner {
     std::vector<double> diag, east, north;
     // Each row's Thomas factors (cfd/multigrid.cpp; empty on the coarsest level, never swept).
     std::vector<double> row_mul, row_inv;
-    std::vector<double> x, b, r;  // this level's unknowns, right-hand side and residual
+    std::vector<double> x, b;  // this level's unknowns and right-hand side
+    std::vector<double> r;     // one row's residual (scratch)
   };
   std::vector<Level> levels_;
   std::unique_ptr<BandedLdlt> coarse_;
