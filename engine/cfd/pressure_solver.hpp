@@ -25,12 +25,12 @@ struct PressureSolveReport {
 // (cfd/multigrid.hpp; more PCG iterations, a cost per cell that grows slowly). `automatic`
 // takes multigrid where the short side passes kMultigridBand cells. Measured with
 // BM_GasStepGrid (the gas step of a bed on the paper's 10 x 20 mm cells and finer ones of the
-// same shape, each preconditioner forced, ns per cell and SIMPLE iteration, medians of 5, banded
-// against multigrid): 40 x 120, 77 against 65; 50 x 150, 69 against 73; 65 x 195, 118 against
-// 72; and on wide grids of 45 rows, whose band stays narrow: 150 x 45, 65 against 89; 1500 x 45
-// (the 240,000-sphere bed), 93 against 84 (kept banded: within this machine's noise). Every
-// shipped scene's grid is banded (the paper's 15 x 45, van Wachem's finest 36 x 200). The others
-// are for tests and benchmarks.
+// same shape, each preconditioner forced, ns per cell and SIMPLE iteration, medians of 3 in
+// bench/results-amd-epyc-2core.csv, banded against multigrid): 40 x 120, 62 against 59; 50 x
+// 150, 67 against 64; 65 x 195, 117 against 63; 80 x 240, 151 against 58; and on wide grids of 45
+// rows, whose band stays narrow: 150 x 45, 61 against 63; 1500 x 45 (the 240,000-sphere bed), 87
+// against 82 (kept banded: within this machine's noise). Every shipped scene's grid is banded
+// (the paper's 15 x 45, van Wachem's finest 36 x 200). The others are for tests and benchmarks.
 enum class PressureMethod { automatic, banded, multigrid };
 
 class PressureSolver {
